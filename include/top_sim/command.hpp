@@ -1,0 +1,26 @@
+// Run-time changes handed to the Simulator (scripted events, topics, services).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "top_sim/friction.hpp"
+#include "top_sim/model.hpp"
+
+namespace top_sim {
+
+// Each field is applied only when set; all set fields are applied together at the next step boundary.
+struct Command {
+  std::optional<double> inclination;     // alpha [rad]; plane and top tilt together (plane-frame state kept)
+  std::optional<double> spin;            // shell omega . f_hat [rad/s]; transverse part and rotor Omega kept
+  std::optional<double> rotor_spin;      // absolute rotor spin Omega [rad/s]
+  std::optional<double> rotor_coupling;  // bearing coupling c [N m s]
+  std::optional<FrictionLaw> friction;   // replaces the friction law
+
+  bool empty() const { return !inclination && !spin && !rotor_spin && !rotor_coupling && !friction; }
+};
+
+// Empty when the command can be applied to this model, else "field = value: allowed range".
+std::string validate(const Command& command, const Model& model);
+
+}  // namespace top_sim

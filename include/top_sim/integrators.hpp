@@ -1,0 +1,54 @@
+// Time steppers over the state vector (Boost.Odeint where it has the method).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "top_sim/state.hpp"
+
+namespace top_sim {
+
+enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4 };
+
+const char* to_string(Method m);
+bool parse_method(const std::string& name, Method& out);
+bool is_adaptive(Method m);
+
+struct IntegratorSettings {
+  Method method = Method::dopri5;
+  double dt = 1.0e-4;   // fixed step; first step of adaptive methods [s]
+  double rtol = 1.0e-8;
+  double atol = 1.0e-10;
+  double max_dt = 0.0;  // upper bound on adaptive steps [s]; 0 = none
+};
+
+using System = std::function<void(const StateVector&, StateVector&)>;
+
+struct StepperStats {
+  std::uint64_t steps = 0;
+  std::uint64_t rejected = 0;
+  std::uint64_t rhs_evaluations = 0;
+};
+
+// A stepper owns its current state; the state between its last two steps is available (dense output).
+class Stepper {
+ public:
+  virtual ~Stepper() = default;
+  virtual void reset(const StateVector& y, double t) = 0;
+  // One accepted step; fixed-step methods do not pass t_limit, adaptive ones may (then interpolate).
+  virtual void step(double t_limit) = 0;
+  virtual double time() const = 0;
+  virtual double previous_time() const = 0;
+  virtual const StateVector& state() const = 0;
+  // State at t in [previous_time(), time()].
+  virtual void state_at(double t, StateVector& y) const = 0;
+  virtual double last_step_size() const = 0;
+  StepperStats stats;
+};
+
+// `system` is called for every right-hand side; the stepper counts the calls.
+std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system);
+
+}  // namespace top_sim

@@ -1,0 +1,74 @@
+// The immutable description of one simulated system (physics.md section 1): top, plane, friction, options.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+#include <cmath>
+
+#include "top_sim/friction.hpp"
+
+namespace top_sim {
+
+// Internal coaxial rotor of the gyroscope-loaded top (physics.md section 6).
+struct Rotor {
+  double inertia_axial = 0.0;  // J [kg m^2]
+  double coupling = 0.0;       // c [N m s], viscous bearing
+};
+
+// Axisymmetric top with a spherical tip; all inertias about the centre of mass.
+struct Top {
+  double mass = 0.025;                // m [kg]
+  double tip_radius = 1.5e-3;         // R [m]
+  double com_offset = 0.010;          // f [m], tip-sphere centre -> centre of mass
+  double inertia_axial = 5.0e-6;      // I_f [kg m^2]
+  double inertia_transverse = 3.0e-6; // I_d [kg m^2]
+  double max_tilt = 1.2;              // theta_max [rad]
+  bool has_rotor = false;
+  Rotor rotor;
+};
+
+// The inclined plane; gravity in the plane frame is cached because every right-hand side needs it.
+struct Plane {
+  double inclination = 0.1;  // alpha [rad]
+  double gravity = 9.81;     // g [m/s^2]
+  Eigen::Vector3d g_plane = Eigen::Vector3d(0.0, -9.81 * std::sin(0.1), -9.81 * std::cos(0.1));
+};
+
+inline Plane make_plane(double inclination, double gravity) {
+  Plane p;
+  p.inclination = inclination;
+  p.gravity = gravity;
+  p.g_plane = Eigen::Vector3d(0.0, -gravity * std::sin(inclination), -gravity * std::cos(inclination));
+  return p;
+}
+
+enum class NormalForceModel { constrained, static_approximation };
+enum class ModelKind { full, adiabatic };
+
+// Thresholds of the regime classification (physics.md section 8).
+struct RegimeThresholds {
+  double nutation_angle = 2.0e-3;      // angle(omega, f_hat) above which the top nutates [rad]
+  double nutation_rate = 2.0e-2;       // |d angle / dt| above which the top nutates [rad/s]
+  double sleep_turn_rate = 1.0e-3;     // |a_cm| / |v_cm| below which the path is straight [1/s]
+  double sleep_acceleration = 1.0e-7;  // |a_cm| below which a (slow or resting) top is asleep [m/s^2]
+};
+
+struct Model {
+  Top top;
+  Plane plane;
+  FrictionLaw friction;
+  double regularization_speed = 1.0e-9;  // v_eps [m/s]
+  NormalForceModel normal_force = NormalForceModel::constrained;
+  ModelKind kind = ModelKind::full;
+  RegimeThresholds regime;
+};
+
+const char* to_string(NormalForceModel m);
+const char* to_string(ModelKind k);
+
+// Axial inertia the shell spins against: I_f' = I_f - J (physics.md section 6).
+inline double shell_axial_inertia(const Top& top) {
+  return top.inertia_axial - (top.has_rotor ? top.rotor.inertia_axial : 0.0);
+}
+
+}  // namespace top_sim

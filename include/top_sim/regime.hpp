@@ -1,0 +1,27 @@
+// Regime classification published with the state (physics.md section 8).
+#pragma once
+
+#include "top_sim/dynamics.hpp"
+#include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
+
+namespace top_sim {
+
+enum class Regime { nutating, precessing, sleeping, sliding, contact_fault };
+
+const char* to_string(Regime r);
+
+// The quantities the classification reads.
+struct RegimeIndicators {
+  double nutation_angle = 0.0;  // angle between omega (or L_total for a gyrostat) and f_hat [rad]
+  double nutation_rate = 0.0;   // its time derivative [rad/s]
+  double acceleration = 0.0;    // |a_cm| [m/s^2]
+  double speed = 0.0;           // |v_cm| [m/s]
+  bool runaway = false;         // no stationary state, or slip beyond the unstable root
+};
+
+RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn);
+
+Regime classify(const RegimeThresholds& thresholds, const RegimeIndicators& ind, bool fault);
+
+}  // namespace top_sim

@@ -1,0 +1,66 @@
+// A scene: everything one run needs, loaded and validated from YAML (docs/interfaces.md).
+#pragma once
+
+#include <Eigen/Core>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "top_sim/command.hpp"
+#include "top_sim/integrators.hpp"
+#include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
+
+namespace YAML { class Node; }
+
+namespace top_sim {
+
+enum class StartKind { tilted, stationary };
+
+struct InitialConditions {
+  StartKind start = StartKind::tilted;
+  double tilt = 0.1;                  // from the world vertical [rad]
+  double tilt_azimuth = 0.0;          // about the world vertical, from world x [rad]
+  double spin = 200.0;                // omega . f_hat of the shell [rad/s]
+  Eigen::Vector2d angular_velocity_transverse = Eigen::Vector2d::Zero();  // world (x, y, 0) [rad/s]
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  double rotor_spin = 0.0;            // absolute rotor spin Omega [rad/s] (top.rotor.spin)
+};
+
+struct ScriptedEvent {
+  double t = 0.0;
+  Command command;
+};
+
+struct Scene {
+  std::string source = "<scene>";  // file name, for messages
+  Model model;
+  InitialConditions initial;
+  IntegratorSettings integrator;
+  std::vector<ScriptedEvent> events;
+  double duration = 10.0;           // default run length [s]
+  std::vector<std::string> warnings;  // e.g. the friction clamp, said once
+};
+
+// A bad scene: names the file, key, value and allowed range.
+class SceneError : public std::runtime_error {
+ public:
+  SceneError(const std::string& file, const std::string& key, const std::string& problem);
+  std::string file, key;
+};
+
+// Loads a scene file; `top` and `friction` may name files in <config>/tops and <config>/planes.
+Scene load_scene(const std::string& path);
+
+// Parses a scene from an already-loaded YAML tree (e.g. from the ROS parameter server).
+// `config_dir` is where tops/ and planes/ are looked up ("" = the installed config).
+Scene parse_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir = "");
+
+// The initial state the scene asks for (tilted start or exact sleeping state).
+StateVector initial_state(const Scene& scene);
+
+// Directory holding tops/, planes/, scenes/: $TOP_SIM_CONFIG_DIR, else the source tree's config/.
+std::string default_config_dir();
+
+}  // namespace top_sim

@@ -1,0 +1,46 @@
+// The stationary ("sleeping") state and its analytic results (physics.md section 5).
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
+
+namespace top_sim {
+
+// A root of mu(s) = tan(alpha) on [0, 1]; stable where d mu / d s > 0.
+struct SlipRoot {
+  double s = 0.0;
+  bool stable = false;
+};
+
+// All roots of mu(s) = tan_alpha on [0, 1], in increasing s.
+std::vector<SlipRoot> slip_roots(const FrictionLaw& law, double tan_alpha);
+
+// Critical inclination alpha_c = atan(max mu): above it no stationary state exists.
+double critical_inclination(const FrictionLaw& law);
+
+struct StationaryState {
+  bool exists = false;
+  std::string reason;          // why not, when !exists (or why phi* is undefined)
+  bool phi_defined = false;    // false when the sleeping top does not move (R = 0, alpha = 0, spin = 0)
+  double slip = 0.0;           // s* (stable branch)
+  double slip_unstable = -1.0; // the unstable root, < 0 when none
+  double phi = 0.0;            // phi*: from h towards downhill [rad]
+  double rolling_speed = 0.0;  // v_h
+  double sliding_speed = 0.0;  // v_d
+  Eigen::Vector3d f_hat = Eigen::Vector3d::UnitZ();
+  Eigen::Vector3d omega = Eigen::Vector3d::Zero();
+  Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // u* of the tip-sphere centre
+};
+
+// Stable sleeping state for the model's alpha and friction, at shell spin omega* (signed).
+StationaryState stationary_state(const Model& model, double spin);
+
+// The exact sleeping state vector at `position`; rotor relative spin set from the absolute spin.
+StateVector stationary_state_vector(const Model& model, const StationaryState& st, double spin,
+                                    const Eigen::Vector2d& position, double rotor_spin);
+
+}  // namespace top_sim

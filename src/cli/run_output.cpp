@@ -1,0 +1,135 @@
+#include "run_output.hpp"
+
+#include <cmath>
+#include <ctime>
+#include <iomanip>
+#include <sstream>
+
+namespace top_sim {
+
+namespace {
+double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+
+std::string num(double v) {
+  if (!std::isfinite(v)) return "null";
+  std::ostringstream os;
+  os << std::setprecision(17) << v;
+  return os.str();
+}
+std::string vec(std::initializer_list<double> v) {
+  std::string s = "[";
+  for (double x : v) s += (s.size() > 1 ? ", " : "") + num(x);
+  return s + "]";
+}
+std::string quoted(const std::string& text) {
+  std::string s = "\"";
+  for (char c : text) {
+    if (c == '"' || c == '\\') s += '\\';
+    if (c == '\n') { s += "\\n"; continue; }
+    s += c;
+  }
+  return s + "\"";
+}
+}  // namespace
+
+double travel_angle(double dx, double dy) { return std::atan2(-dy, dx); }
+
+RunResult run(Simulator& sim, const RunOptions& opt) {
+  RunResult r;
+  const double t0 = sim.time();
+  const double t_end = t0 + opt.duration;
+  const double t_mark = t0 + 0.8 * opt.duration;
+  const double cpu0 = cpu_now();
+  std::optional<Eigen::Vector2d> mark;
+
+  auto sample = [&](double t) {
+    sim.advance_to(t);
+    if (opt.on_sample) opt.on_sample(sim.snapshot());
+  };
+  if (opt.sample_rate > 0.0 && opt.on_sample) {
+    opt.on_sample(sim.snapshot());
+    const double dt = 1.0 / opt.sample_rate;
+    for (long k = 1;; ++k) {
+      const double t = t0 + k * dt;
+      if (t > t_end + 1e-9 * dt) break;
+      if (!mark && t >= t_mark) {
+        sim.advance_to(t_mark);
+        mark = position(sim.state());
+      }
+      sample(t);
+      if (sim.fault() != ContactFault::none) break;
+    }
+  } else {
+    sim.advance_to(t_mark);
+    mark = position(sim.state());
+  }
+  sim.advance_to(t_end);
+  r.cpu_seconds = cpu_now() - cpu0;
+  r.sim_seconds = sim.time() - t0;
+  r.final = sim.snapshot();
+  r.stats = sim.stats();
+  r.max_energy_residual = sim.max_energy_residual();
+  if (mark && sim.fault() == ContactFault::none) {
+    const Eigen::Vector2d d = position(sim.state()) - *mark;
+    if (d.norm() > 0.0) r.phi_measured = travel_angle(d.x(), d.y());
+  }
+  const StationaryState st = sim.stationary();
+  if (st.exists && st.phi_defined)
+    r.phi_star = st.phi;
+  else
+    r.stationary_note = st.reason;
+  return r;
+}
+
+void write_csv_header(std::ostream& os) {
+  os << "t,alpha,com_x,com_y,com_z,vcm_x,vcm_y,vcm_z,u_x,u_y,contact_x,contact_y,f_x,f_y,f_z,"
+        "omega_x,omega_y,omega_z,spin,rotor_spin,s,mu,N,phi,regime,energy,energy_residual\n";
+}
+
+void write_csv_row(std::ostream& os, const Snapshot& s) {
+  os << std::setprecision(12) << s.t << ',' << s.alpha << ',' << s.com.x() << ',' << s.com.y() << ',' << s.com.z()
+     << ',' << s.com_velocity.x() << ',' << s.com_velocity.y() << ',' << s.com_velocity.z() << ','
+     << s.tip_velocity.x() << ',' << s.tip_velocity.y() << ',' << s.contact_point.x() << ',' << s.contact_point.y()
+     << ',' << s.figure_axis.x() << ',' << s.figure_axis.y() << ',' << s.figure_axis.z() << ','
+     << s.angular_velocity.x() << ',' << s.angular_velocity.y() << ',' << s.angular_velocity.z() << ',' << s.spin
+     << ',' << s.rotor_spin << ',' << s.slip << ',' << s.mu << ',' << s.normal_force << ',' << s.phi << ','
+     << to_string(s.regime) << ',' << s.energy << ',' << s.energy_balance_residual << '\n';
+}
+
+std::string summary_json(const Scene& scene, const RunResult& r) {
+  const Snapshot& f = r.final;
+  std::ostringstream os;
+  os << "{\n"
+     << "  \"scene\": " << quoted(scene.source) << ",\n"
+     << "  \"method\": " << quoted(to_string(scene.integrator.method)) << ",\n"
+     << "  \"model\": " << quoted(to_string(scene.model.kind)) << ",\n"
+     << "  \"normal_force\": " << quoted(to_string(scene.model.normal_force)) << ",\n"
+     << "  \"sim_seconds\": " << num(r.sim_seconds) << ",\n"
+     << "  \"cpu_seconds\": " << num(r.cpu_seconds) << ",\n"
+     << "  \"real_time_factor\": " << num(r.cpu_seconds > 0 ? r.sim_seconds / r.cpu_seconds : NAN) << ",\n"
+     << "  \"steps\": " << r.stats.steps << ",\n"
+     << "  \"rhs_evaluations\": " << r.stats.rhs_evaluations << ",\n"
+     << "  \"regime\": " << quoted(to_string(f.regime)) << ",\n"
+     << "  \"phi_measured\": " << (r.phi_measured ? num(*r.phi_measured) : "null") << ",\n"
+     << "  \"phi_star\": " << (r.phi_star ? num(*r.phi_star) : "null") << ",\n"
+     << "  \"stationary_note\": " << (r.stationary_note.empty() ? "null" : quoted(r.stationary_note)) << ",\n"
+     << "  \"final\": {\n"
+     << "    \"t\": " << num(f.t) << ",\n"
+     << "    \"alpha\": " << num(f.alpha) << ",\n"
+     << "    \"position\": " << vec({f.contact_point.x(), f.contact_point.y()}) << ",\n"
+     << "    \"velocity\": " << vec({f.tip_velocity.x(), f.tip_velocity.y()}) << ",\n"
+     << "    \"f_hat\": " << vec({f.figure_axis.x(), f.figure_axis.y(), f.figure_axis.z()}) << ",\n"
+     << "    \"omega\": " << vec({f.angular_velocity.x(), f.angular_velocity.y(), f.angular_velocity.z()}) << ",\n"
+     << "    \"spin\": " << num(f.spin) << ",\n"
+     << "    \"rotor_spin\": " << (f.has_rotor ? num(f.rotor_spin) : "null") << ",\n"
+     << "    \"slip\": " << num(f.slip) << ",\n"
+     << "    \"phi\": " << num(f.phi) << "\n"
+     << "  },\n"
+     << "  \"energy_balance_residual\": " << num(r.max_energy_residual) << ",\n"
+     << "  \"contact_fault\": " << (f.fault == ContactFault::none ? "null" : quoted(f.fault_message)) << ",\n"
+     << "  \"contact_fault_kind\": " << (f.fault == ContactFault::none ? "null" : quoted(to_string(f.fault))) << "\n"
+     << "}\n";
+  return os.str();
+}
+
+}  // namespace top_sim

@@ -1,0 +1,42 @@
+// Shared by the command-line tools: run a scene, sample it, summarise it (docs/interfaces.md).
+#pragma once
+
+#include <functional>
+#include <optional>
+#include <ostream>
+#include <string>
+
+#include "top_sim/simulator.hpp"
+
+namespace top_sim {
+
+struct RunOptions {
+  double duration = 10.0;     // simulated seconds
+  double sample_rate = 0.0;   // samples per simulated second for on_sample (0 = none)
+  std::function<void(const Snapshot&)> on_sample;
+};
+
+struct RunResult {
+  Snapshot final;
+  double sim_seconds = 0.0;
+  double cpu_seconds = 0.0;
+  StepperStats stats;
+  std::optional<double> phi_measured;  // travel direction over the last 20 % of the run
+  std::optional<double> phi_star;      // analytic, when a stationary state exists
+  std::string stationary_note;         // why phi_star is absent
+  double max_energy_residual = 0.0;
+};
+
+// Advances the simulator from its current time by options.duration.
+RunResult run(Simulator& sim, const RunOptions& options);
+
+// Angle from h towards downhill of a displacement (dx, dy) in the plane frame, in [-pi, pi].
+double travel_angle(double dx, double dy);
+
+void write_csv_header(std::ostream& os);
+void write_csv_row(std::ostream& os, const Snapshot& s);
+
+// The JSON summary of docs/interfaces.md.
+std::string summary_json(const Scene& scene, const RunResult& r);
+
+}  // namespace top_sim

@@ -1,0 +1,54 @@
+// The reduced ("adiabatic") model (physics.md section 7).
+#include "top_sim/adiabatic.hpp"
+
+#include <cmath>
+
+#include "top_sim/orientation.hpp"
+#include "top_sim/stationary.hpp"
+
+namespace top_sim {
+
+std::string adiabatic_validity(const Model& model) {
+  const StationaryState st = stationary_state(model, 1.0);
+  if (!st.exists) return "model.kind = adiabatic is invalid here: " + st.reason;
+  return "";
+}
+
+void adiabatic_derivative(const Model& model, const StateVector& y, StateVector& dydt) {
+  const Top& top = model.top;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const double spin = angular_velocity(y).dot(f_hat);
+  const StationaryState st = stationary_state(model, spin);
+  const StationaryState unit = stationary_state(model, spin >= 0.0 ? 1.0 : -1.0);  // du*/d(spin) (u* is linear per sign)
+
+  // Only the bearing changes the shell spin once asleep: I_f' spin' = c nu, J Omega' = -c nu.
+  double spin_dot = 0.0, nu_dot = 0.0, bearing = 0.0;
+  if (top.has_rotor) {
+    const double c = top.rotor.coupling, nu = y[idx::nu];
+    spin_dot = c * nu / shell_axial_inertia(top);
+    nu_dot = -c * nu / top.rotor.inertia_axial - spin_dot;
+    bearing = c * nu * nu;
+  }
+  const Eigen::Vector2d du = (spin >= 0.0 ? 1.0 : -1.0) * unit.velocity * spin_dot;
+  dydt.fill(0.0);
+  dydt[idx::x] = st.velocity.x();
+  dydt[idx::x + 1] = st.velocity.y();
+  dydt[idx::u] = du.x();
+  dydt[idx::u + 1] = du.y();
+  for (int i = 0; i < 3; ++i) dydt[idx::omega + i] = spin_dot * st.f_hat[i];
+  dydt[idx::nu] = nu_dot;
+  // Friction power mu N |v_t| = tan(alpha) m g cos(alpha) v_d in the sleeping state.
+  dydt[idx::w_diss] = std::abs(std::sin(model.plane.inclination)) * top.mass * model.plane.gravity * st.sliding_speed + bearing;
+  dydt[idx::psi] = spin_phase_rate(st.f_hat, st.omega);
+}
+
+void project_to_stationary(const Model& model, StateVector& y) {
+  const double spin = angular_velocity(y).dot(figure_axis(y).normalized());
+  const StationaryState st = stationary_state(model, spin);
+  if (!st.exists) return;
+  set_velocity(y, st.velocity);
+  set_figure_axis(y, st.f_hat);
+  set_angular_velocity(y, st.omega);
+}
+
+}  // namespace top_sim

@@ -1,0 +1,65 @@
+// Contact kinematics and faults (physics.md sections 3 and 4).
+#include "top_sim/contact.hpp"
+
+#include <cmath>
+#include <sstream>
+
+namespace top_sim {
+
+ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
+  ContactKinematics k;
+  const double R = model.top.tip_radius;
+  const double v_eps = model.regularization_speed;
+  const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
+  k.v_t = u - R * omega_x_n;
+  k.rolling_speed = R * omega_x_n.norm();
+  const double vt = k.v_t.norm();
+  k.slip = vt / (u.norm() + k.rolling_speed + v_eps);
+  k.t_hat = k.v_t / std::sqrt(vt * vt + v_eps * v_eps);
+  return k;
+}
+
+const char* to_string(ContactFault fault) {
+  switch (fault) {
+    case ContactFault::none: return "none";
+    case ContactFault::lift_off: return "lift_off";
+    case ContactFault::painleve: return "painleve";
+    case ContactFault::fallen: return "fallen";
+    case ContactFault::numerical: return "numerical";
+  }
+  return "?";
+}
+
+ContactFault fault_of(const ContactMargins& m) {
+  if (m.painleve <= 0.0) return ContactFault::painleve;  // first: N itself is meaningless then
+  if (m.normal_force < 0.0) return ContactFault::lift_off;
+  if (m.tilt < 0.0) return ContactFault::fallen;
+  return ContactFault::none;
+}
+
+std::string describe(ContactFault fault, const ContactMargins& m, double t) {
+  std::ostringstream os;
+  os << "t = " << t << " s: ";
+  switch (fault) {
+    case ContactFault::none: os << "no contact fault"; break;
+    case ContactFault::lift_off:
+      os << "lift-off: the normal force N would become negative (N = " << m.normal_force
+         << " N); flight phases are not modelled, the top stops here";
+      break;
+    case ContactFault::painleve:
+      os << "Painleve: the rigid contact has no unique normal force (1 - m f A = " << m.painleve
+         << " <= 0); reduce the friction";
+      break;
+    case ContactFault::fallen:
+      os << "fallen: the figure axis is tilted beyond max_tilt from the plane normal (n . f_hat - cos(max_tilt) = "
+         << m.tilt << "); the body would touch the plane";
+      break;
+    case ContactFault::numerical:
+      os << "numerical failure: the integrator produced a non-finite state or could not find a step; "
+            "use a smaller dt or another method";
+      break;
+  }
+  return os.str();
+}
+
+}  // namespace top_sim

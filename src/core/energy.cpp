@@ -1,0 +1,46 @@
+// Energy balance E + W_diss (physics.md section 4).
+#include "top_sim/energy.hpp"
+
+#include <cmath>
+
+namespace top_sim {
+
+namespace {
+double kinetic_energy(const Model& model, const StateVector& y) {
+  const Top& top = model.top;
+  const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
+  const double nu = top.has_rotor ? y[idx::nu] : 0.0;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const Eigen::Vector3d w = angular_velocity(y);
+  const Eigen::Vector3d v_cm = velocity3(y) + w.cross(top.com_offset * f_hat);
+  const double w_f = w.dot(f_hat);
+  const double I_fs = top.inertia_axial - J;
+  const double shell = top.inertia_transverse * (w.squaredNorm() - w_f * w_f) + I_fs * w_f * w_f;
+  const double Omega = w_f + nu;
+  return 0.5 * top.mass * v_cm.squaredNorm() + 0.5 * shell + 0.5 * J * Omega * Omega;
+}
+}  // namespace
+
+double mechanical_energy(const Model& model, const StateVector& y) {
+  const Top& top = model.top;
+  const Eigen::Vector3d r_cm =
+      Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius) + top.com_offset * figure_axis(y).normalized();
+  return kinetic_energy(model, y) - top.mass * model.plane.g_plane.dot(r_cm);  // m g z_cm,W = -m g_P . r_cm
+}
+
+double energy_scale(const Model& model, const StateVector& y) {
+  const Top& top = model.top;
+  return kinetic_energy(model, y) + top.mass * model.plane.gravity * (top.tip_radius + std::abs(top.com_offset));
+}
+
+void EnergyBalance::rebase(const Model& model, const StateVector& y) {
+  reference = mechanical_energy(model, y) + y[idx::w_diss];
+  scale = energy_scale(model, y);
+  if (!(scale > 0.0)) scale = 1.0;
+}
+
+double EnergyBalance::residual(const Model& model, const StateVector& y) const {
+  return std::abs(mechanical_energy(model, y) + y[idx::w_diss] - reference) / scale;
+}
+
+}  // namespace top_sim

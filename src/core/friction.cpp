@@ -1,0 +1,129 @@
+// Friction laws mu(s) (physics.md section 4).
+#include "top_sim/friction.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace top_sim {
+
+const char* to_string(FrictionLawKind kind) {
+  switch (kind) {
+    case FrictionLawKind::paper: return "paper";
+    case FrictionLawKind::linearized: return "linearized";
+    case FrictionLawKind::coulomb: return "coulomb";
+    case FrictionLawKind::table: return "table";
+  }
+  return "?";
+}
+
+double raw_friction_coefficient(const FrictionLaw& law, double s) {
+  switch (law.kind) {
+    case FrictionLawKind::paper:
+      return law.mu_c * s * (2.0 * law.s_c - s) / (law.s_c * law.s_c);
+    case FrictionLawKind::linearized:
+      return law.mu0 + law.k * (s - law.s0);
+    case FrictionLawKind::coulomb:
+      return law.mu;
+    case FrictionLawKind::table: {
+      const auto& p = law.points;
+      if (s <= p.front().first) return p.front().second;
+      if (s >= p.back().first) return p.back().second;
+      std::size_t i = 1;
+      while (p[i].first < s) ++i;
+      const double w = (s - p[i - 1].first) / (p[i].first - p[i - 1].first);
+      return p[i - 1].second + w * (p[i].second - p[i - 1].second);
+    }
+  }
+  return 0.0;
+}
+
+double friction_slope(const FrictionLaw& law, double s) {
+  if (raw_friction_coefficient(law, s) < 0.0) return 0.0;
+  switch (law.kind) {
+    case FrictionLawKind::paper:
+      return 2.0 * law.mu_c * (law.s_c - s) / (law.s_c * law.s_c);
+    case FrictionLawKind::linearized:
+      return law.k;
+    case FrictionLawKind::coulomb:
+      return 0.0;
+    case FrictionLawKind::table: {
+      const auto& p = law.points;
+      if (s < p.front().first || s >= p.back().first) return 0.0;
+      std::size_t i = 1;
+      while (p[i].first <= s) ++i;
+      return (p[i].second - p[i - 1].second) / (p[i].first - p[i - 1].first);
+    }
+  }
+  return 0.0;
+}
+
+namespace {
+std::string bad(const std::string& field, double value, const std::string& range) {
+  std::ostringstream os;
+  os << field << " = " << value << ": must be " << range;
+  return os.str();
+}
+}  // namespace
+
+std::string validate(const FrictionLaw& law) {
+  switch (law.kind) {
+    case FrictionLawKind::paper:
+      if (!(std::isfinite(law.mu_c) && law.mu_c > 0.0)) return bad("friction.mu_c", law.mu_c, "> 0");
+      if (!(law.s_c > 0.0 && law.s_c <= 1.0)) return bad("friction.s_c", law.s_c, "in (0, 1]");
+      return "";
+    case FrictionLawKind::linearized:
+      if (!std::isfinite(law.mu0)) return bad("friction.mu0", law.mu0, "finite");
+      if (!std::isfinite(law.k)) return bad("friction.k", law.k, "finite");
+      if (!(law.s0 >= 0.0 && law.s0 <= 1.0)) return bad("friction.s0", law.s0, "in [0, 1]");
+      if (raw_friction_coefficient(law, 0.0) <= 0.0 && raw_friction_coefficient(law, 1.0) <= 0.0)
+        return "friction (linearized): mu0 = " + std::to_string(law.mu0) + ", k = " + std::to_string(law.k) +
+               ", s0 = " + std::to_string(law.s0) + " give mu(s) <= 0 on all of [0, 1]: no friction at all";
+      return "";
+    case FrictionLawKind::coulomb:
+      if (!(std::isfinite(law.mu) && law.mu >= 0.0)) return bad("friction.mu", law.mu, ">= 0 and finite");
+      return "";
+    case FrictionLawKind::table: {
+      const auto& p = law.points;
+      if (p.size() < 2) return "friction.points has " + std::to_string(p.size()) + " points: must have at least 2";
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const std::string at = "friction.points[" + std::to_string(i) + "]";
+        if (!(p[i].first >= 0.0 && p[i].first <= 1.0)) return bad(at + ".s", p[i].first, "in [0, 1]");
+        if (!std::isfinite(p[i].second)) return bad(at + ".mu", p[i].second, "finite");
+        if (i > 0 && !(p[i].first > p[i - 1].first))
+          return bad(at + ".s", p[i].first, "greater than the previous s (" + std::to_string(p[i - 1].first) + ")");
+      }
+      return "";
+    }
+  }
+  return "friction.law: unknown";
+}
+
+bool clamp_is_active(const FrictionLaw& law) {
+  switch (law.kind) {
+    case FrictionLawKind::paper: return law.s_c < 0.5;  // mu < 0 for s > 2 s_c
+    case FrictionLawKind::linearized:
+      return raw_friction_coefficient(law, 0.0) < 0.0 || raw_friction_coefficient(law, 1.0) < 0.0;
+    case FrictionLawKind::coulomb: return false;
+    case FrictionLawKind::table:
+      return std::any_of(law.points.begin(), law.points.end(), [](const auto& q) { return q.second < 0.0; });
+  }
+  return false;
+}
+
+double max_friction_coefficient(const FrictionLaw& law) {
+  switch (law.kind) {
+    case FrictionLawKind::paper: return law.mu_c;  // at s = s_c <= 1
+    case FrictionLawKind::linearized:
+      return std::max({0.0, raw_friction_coefficient(law, 0.0), raw_friction_coefficient(law, 1.0)});
+    case FrictionLawKind::coulomb: return law.mu;
+    case FrictionLawKind::table: {
+      double m = 0.0;
+      for (const auto& q : law.points) m = std::max(m, q.second);
+      return m;
+    }
+  }
+  return 0.0;
+}
+
+}  // namespace top_sim

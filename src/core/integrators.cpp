@@ -1,0 +1,324 @@
+// Time steppers: Euler, RK4 and Dormand-Prince 5(4) and Rosenbrock 4 from Boost.Odeint, semi-implicit Euler here.
+#include "top_sim/integrators.hpp"
+
+#include <algorithm>
+#include <boost/numeric/odeint.hpp>
+#include <boost/numeric/ublas/matrix.hpp>
+#include <boost/numeric/ublas/vector.hpp>
+#include <cmath>
+#include <limits>
+#include <stdexcept>
+
+namespace top_sim {
+
+namespace odeint = boost::numeric::odeint;
+
+const char* to_string(Method m) {
+  switch (m) {
+    case Method::euler: return "euler";
+    case Method::semi_implicit_euler: return "semi_implicit_euler";
+    case Method::rk4: return "rk4";
+    case Method::dopri5: return "dopri5";
+    case Method::rosenbrock4: return "rosenbrock4";
+  }
+  return "?";
+}
+
+bool parse_method(const std::string& name, Method& out) {
+  for (Method m : {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::dopri5, Method::rosenbrock4})
+    if (name == to_string(m)) {
+      out = m;
+      return true;
+    }
+  return false;
+}
+
+bool is_adaptive(Method m) { return m == Method::dopri5 || m == Method::rosenbrock4; }
+
+namespace {
+
+// Counts right-hand-side calls and adapts the odeint calling convention.
+struct CountingSystem {
+  const System* system;
+  std::uint64_t* counter;
+  void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
+    ++*counter;
+    (*system)(x, dxdt);
+  }
+};
+
+// ---- fixed-step methods ---------------------------------------------------------------------------------
+
+class FixedStepper : public Stepper {
+ public:
+  FixedStepper(Method method, double dt, System system) : method_(method), dt_(dt), system_(std::move(system)) {}
+
+  void reset(const StateVector& y, double t) override {
+    y_ = y;
+    y_prev_ = y;
+    t_ = t;
+    t_prev_ = t;
+  }
+
+  void step(double t_limit) override {
+    double h = dt_;
+    // Land exactly on t_limit (publish instants, events) unless it is within rounding of the current time.
+    if (t_limit > t_ && t_limit - t_ < h) h = t_limit - t_;
+    y_prev_ = y_;
+    t_prev_ = t_;
+    CountingSystem sys{&system_, &stats.rhs_evaluations};
+    switch (method_) {
+      case Method::euler: euler_.do_step(sys, y_, t_, h); break;
+      case Method::rk4: rk4_.do_step(sys, y_, t_, h); break;
+      case Method::semi_implicit_euler: semi_implicit_step(sys, h); break;
+      default: throw std::logic_error("FixedStepper: not a fixed-step method");
+    }
+    normalize_figure_axis(y_);
+    t_ += h;
+    last_h_ = h;
+    ++stats.steps;
+  }
+
+  double time() const override { return t_; }
+  double previous_time() const override { return t_prev_; }
+  const StateVector& state() const override { return y_; }
+  double last_step_size() const override { return last_h_; }
+
+  // Linear interpolation: fixed-step runs land on requested times, this serves only event location.
+  void state_at(double t, StateVector& y) const override {
+    const double span = t_ - t_prev_;
+    const double w = span > 0.0 ? (t - t_prev_) / span : 1.0;
+    for (std::size_t i = 0; i < y.size(); ++i) y[i] = (1.0 - w) * y_prev_[i] + w * y_[i];
+  }
+
+ private:
+  // Velocities (u, omega, nu, W) first from the old state, then positions (p, f_hat, psi) with the new velocities.
+  void semi_implicit_step(const CountingSystem& sys, double h) {
+    StateVector d;
+    sys(y_, d, t_);
+    for (std::size_t i : {idx::u, idx::u + 1, idx::omega, idx::omega + 1, idx::omega + 2, idx::nu, idx::w_diss})
+      y_[i] += h * d[i];
+    sys(y_, d, t_);  // position rates with the new velocities (their own velocity rates are unused)
+    for (std::size_t i : {idx::x, idx::x + 1, idx::f, idx::f + 1, idx::f + 2, idx::psi}) y_[i] += h * d[i];
+  }
+
+  Method method_;
+  double dt_;
+  System system_;
+  StateVector y_{}, y_prev_{};
+  double t_ = 0.0, t_prev_ = 0.0, last_h_ = 0.0;
+  odeint::euler<StateVector> euler_;
+  odeint::runge_kutta4<StateVector> rk4_;
+};
+
+// ---- Dormand-Prince 5(4) with dense output ----------------------------------------------------------------
+
+// odeint's default error norm over every component but the spin phase (physics.md section 2).
+class PhaseFreeErrorChecker {
+ public:
+  PhaseFreeErrorChecker(double atol = 1e-6, double rtol = 1e-6) : atol_(atol), rtol_(rtol) {}
+
+  template <class Algebra>
+  double error(Algebra&, const StateVector& x_old, const StateVector& dxdt_old, StateVector& x_err, double dt) const {
+    double err = 0.0;
+    for (std::size_t i = 0; i < idx::psi; ++i) {
+      const double scale = atol_ + rtol_ * (std::abs(x_old[i]) + std::abs(dt) * std::abs(dxdt_old[i]));
+      err = std::max(err, std::abs(x_err[i]) / scale);
+    }
+    return err;
+  }
+
+ private:
+  double atol_, rtol_;
+};
+
+class Dopri5Stepper : public Stepper {
+  using Base = odeint::runge_kutta_dopri5<StateVector>;
+  using Adjuster = odeint::default_step_adjuster<double, double>;
+  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, Adjuster>;
+  using Dense = odeint::dense_output_runge_kutta<Controlled>;
+
+ public:
+  Dopri5Stepper(const IntegratorSettings& s, System system)
+      : settings_(s),
+        system_(std::move(system)),
+        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), Adjuster(s.max_dt))) {}
+
+  void reset(const StateVector& y, double t) override {
+    const double dt = next_dt_ > 0.0 ? next_dt_ : settings_.dt;
+    dense_.initialize(y, t, dt);
+  }
+
+  void step(double) override {
+    CountingSystem sys{&system_, &stats.rhs_evaluations};
+    dense_.do_step(sys);
+    StateVector y = dense_.current_state();
+    // Renormalise f_hat only when it has drifted: re-initialising costs one right-hand side.
+    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
+    next_dt_ = dense_.current_time_step();
+    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);
+    if (renormalized_) {
+      last_ = dense_;  // keeps this step's interpolant, which initialize() discards
+      normalize_figure_axis(y);
+      dense_.initialize(y, dense_.current_time(), next_dt_);
+    }
+    ++stats.steps;
+  }
+
+  double time() const override { return dense_.current_time(); }
+  double previous_time() const override { return interval().previous_time(); }
+  const StateVector& state() const override { return dense_.current_state(); }
+  double last_step_size() const override { return time() - previous_time(); }
+
+  void state_at(double t, StateVector& y) const override {
+    if (t >= time()) {
+      y = dense_.current_state();
+      return;
+    }
+    interval().calc_state(t, y);
+    normalize_figure_axis(y);
+  }
+
+ private:
+  const Dense& interval() const { return renormalized_ ? last_ : dense_; }
+
+  IntegratorSettings settings_;
+  System system_;
+  Dense dense_, last_;
+  double next_dt_ = 0.0;
+  bool renormalized_ = false;
+};
+
+// ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------
+
+using UVector = boost::numeric::ublas::vector<double>;
+using UMatrix = boost::numeric::ublas::matrix<double>;
+
+// odeint's Rosenbrock 4 with the spin phase excluded from its error estimate.
+class PhaseFreeRosenbrock4 : public odeint::rosenbrock4<double> {
+ public:
+  using odeint::rosenbrock4<double>::do_step;
+  template <class System>
+  void do_step(System system, const state_type& x, time_type t, state_type& xout, time_type dt, state_type& xerr) {
+    odeint::rosenbrock4<double>::do_step(system, x, t, xout, dt, xerr);
+    xerr[idx::psi] = 0.0;
+  }
+};
+
+class Rosenbrock4Stepper : public Stepper {
+  using Controller = odeint::rosenbrock4_controller<PhaseFreeRosenbrock4>;
+  using Dense = odeint::rosenbrock4_dense_output<Controller>;
+
+  struct Rhs {
+    Rosenbrock4Stepper* self;
+    void operator()(const UVector& x, UVector& dxdt, double) const {
+      StateVector xs, ds;
+      std::copy(x.begin(), x.end(), xs.begin());
+      ++self->stats.rhs_evaluations;
+      self->system_(xs, ds);
+      std::copy(ds.begin(), ds.end(), dxdt.begin());
+    }
+  };
+  // Forward differences with steps small against v_eps-scale kinks of the friction law.
+  struct Jacobian {
+    Rosenbrock4Stepper* self;
+    void operator()(const UVector& x, UMatrix& jac, double, UVector& dfdt) const {
+      StateVector xs, f0, f1;
+      std::copy(x.begin(), x.end(), xs.begin());
+      self->system_(xs, f0);
+      ++self->stats.rhs_evaluations;
+      for (std::size_t j = 0; j < idx::size; ++j) {
+        const double h = 1e-9 * std::max(std::abs(xs[j]), 1e-3);
+        const double saved = xs[j];
+        xs[j] = saved + h;
+        self->system_(xs, f1);
+        ++self->stats.rhs_evaluations;
+        xs[j] = saved;
+        for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = (f1[i] - f0[i]) / h;
+      }
+      for (std::size_t i = 0; i < idx::size; ++i) dfdt[i] = 0.0;  // autonomous
+    }
+  };
+
+ public:
+  Rosenbrock4Stepper(const IntegratorSettings& s, System system)
+      : settings_(s),
+        system_(std::move(system)),
+        dense_{Dense(Controller(s.atol, s.rtol, s.max_dt)), Dense(Controller(s.atol, s.rtol, s.max_dt))},
+        x_(idx::size) {}
+
+  void reset(const StateVector& y, double t) override {
+    std::copy(y.begin(), y.end(), x_.begin());
+    const double dt = next_dt_ > 0.0 ? next_dt_ : settings_.dt;
+    current().initialize(x_, t, dt);
+    renormalized_ = false;
+    copy_current();
+  }
+
+  void step(double) override {
+    current().do_step(std::make_pair(Rhs{this}, Jacobian{this}));
+    next_dt_ = current().current_time_step();
+    StateVector y;
+    std::copy(current().current_state().begin(), current().current_state().end(), y.begin());
+    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
+    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);
+    if (renormalized_) {
+      // odeint's Rosenbrock stepper cannot be copied: continue in the twin, keep this one for interpolation.
+      const double t = current().current_time();
+      active_ = 1 - active_;
+      normalize_figure_axis(y);
+      std::copy(y.begin(), y.end(), x_.begin());
+      current().initialize(x_, t, next_dt_);
+    }
+    copy_current();
+    ++stats.steps;
+  }
+
+  double time() const override { return dense_[active_].current_time(); }
+  double previous_time() const override { return interval().previous_time(); }
+  const StateVector& state() const override { return current_; }
+  double last_step_size() const override { return time() - previous_time(); }
+
+  void state_at(double t, StateVector& y) const override {
+    if (t >= time()) {
+      y = current_;
+      return;
+    }
+    UVector x(idx::size);
+    interval().calc_state(t, x);
+    std::copy(x.begin(), x.end(), y.begin());
+    normalize_figure_axis(y);
+  }
+
+ private:
+  Dense& current() { return dense_[active_]; }
+  void copy_current() { std::copy(current().current_state().begin(), current().current_state().end(), current_.begin()); }
+  Dense& interval() const { return dense_[renormalized_ ? 1 - active_ : active_]; }  // odeint's calc_state is non-const
+
+  IntegratorSettings settings_;
+  System system_;
+  mutable Dense dense_[2];
+  int active_ = 0;
+  UVector x_;
+  StateVector current_{};
+  double next_dt_ = 0.0;
+  bool renormalized_ = false;
+};
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system) {
+  switch (settings.method) {
+    case Method::euler:
+    case Method::semi_implicit_euler:
+    case Method::rk4:
+      return std::make_unique<FixedStepper>(settings.method, settings.dt, std::move(system));
+    case Method::dopri5:
+      return std::make_unique<Dopri5Stepper>(settings, std::move(system));
+    case Method::rosenbrock4:
+      return std::make_unique<Rosenbrock4Stepper>(settings, std::move(system));
+  }
+  throw std::invalid_argument("make_stepper: unknown method");
+}
+
+}  // namespace top_sim

@@ -1,0 +1,72 @@
+// Regime classification (physics.md section 8).
+#include "top_sim/regime.hpp"
+
+#include <cmath>
+
+#include "top_sim/stationary.hpp"
+
+namespace top_sim {
+
+const char* to_string(Regime r) {
+  switch (r) {
+    case Regime::nutating: return "nutating";
+    case Regime::precessing: return "precessing";
+    case Regime::sleeping: return "sleeping";
+    case Regime::sliding: return "sliding";
+    case Regime::contact_fault: return "contact_fault";
+  }
+  return "?";
+}
+
+RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn) {
+  RegimeIndicators ind;
+  const Top& top = model.top;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const Eigen::Vector3d w = angular_velocity(y);
+  const Eigen::Vector3d f_dot = w.cross(f_hat);
+
+  // Near zero shell spin the angle of omega is ill-defined: a gyrostat uses L_total's direction (section 6).
+  Eigen::Vector3d a, a_dot;
+  double c, c_dot;
+  if (top.has_rotor) {
+    const double J = top.rotor.inertia_axial, I_fs = top.inertia_axial - J, I_d = top.inertia_transverse;
+    const double w_f = w.dot(f_hat);
+    const Eigen::Vector3d L = I_d * w + ((I_fs - I_d) * w_f + J * (w_f + y[idx::nu])) * f_hat;
+    const Eigen::Vector3d rho = -(top.tip_radius * Eigen::Vector3d::UnitZ() + top.com_offset * f_hat);
+    const Eigen::Vector3d L_dot = rho.cross(dyn.contact_force);
+    a = L.cross(f_hat);
+    a_dot = L_dot.cross(f_hat) + L.cross(f_dot);
+    c = L.dot(f_hat);
+    c_dot = L_dot.dot(f_hat) + L.dot(f_dot);
+  } else {
+    a = w.cross(f_hat);
+    a_dot = dyn.omega_dot.cross(f_hat) + w.cross(f_dot);
+    c = w.dot(f_hat);
+    c_dot = dyn.omega_dot.dot(f_hat) + w.dot(f_dot);
+  }
+  const double an = a.norm(), cn = std::abs(c);
+  ind.nutation_angle = std::atan2(an, cn);
+  const double an_dot = an > 0.0 ? a.dot(a_dot) / an : a_dot.norm();
+  const double cn_dot = c >= 0.0 ? c_dot : -c_dot;
+  const double denom = an * an + cn * cn;
+  ind.nutation_rate = denom > 0.0 ? (cn * an_dot - an * cn_dot) / denom : 0.0;
+
+  ind.acceleration = dyn.a_cm.norm();
+  ind.speed = (velocity3(y) + w.cross(top.com_offset * f_hat)).norm();
+
+  const StationaryState st = stationary_state(model, w.dot(f_hat));
+  ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
+  return ind;
+}
+
+Regime classify(const RegimeThresholds& th, const RegimeIndicators& ind, bool fault) {
+  if (fault) return Regime::contact_fault;
+  // A sliding top keeps a steady omega-f_hat offset from the friction torque: sliding outranks nutation.
+  if (ind.runaway) return Regime::sliding;
+  if (ind.nutation_angle > th.nutation_angle || std::abs(ind.nutation_rate) > th.nutation_rate)
+    return Regime::nutating;
+  const bool straight = ind.acceleration <= th.sleep_acceleration || ind.acceleration <= th.sleep_turn_rate * ind.speed;
+  return straight ? Regime::sleeping : Regime::precessing;
+}
+
+}  // namespace top_sim

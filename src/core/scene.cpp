@@ -1,0 +1,400 @@
+// Scene files (docs/interfaces.md): strict loading, every key checked, errors name file, key, value and range.
+#include "top_sim/scene.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <functional>
+#include <set>
+#include <sstream>
+#include <sys/stat.h>
+
+#include "top_sim/adiabatic.hpp"
+#include "top_sim/stationary.hpp"
+
+#ifndef TOP_SIM_SOURCE_CONFIG_DIR
+#define TOP_SIM_SOURCE_CONFIG_DIR ""
+#endif
+
+namespace top_sim {
+
+SceneError::SceneError(const std::string& f, const std::string& k, const std::string& problem)
+    : std::runtime_error(f + ": " + (k.empty() ? "" : k + ": ") + problem), file(f), key(k) {}
+
+namespace {
+
+bool is_dir(const std::string& path) {
+  struct stat st {};
+  return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+}
+
+std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }
+
+std::string show(const YAML::Node& n) {
+  if (n.IsScalar()) return "'" + n.Scalar() + "'";
+  if (n.IsSequence()) return "a list";
+  if (n.IsMap()) return "a mapping";
+  return "null";
+}
+
+std::string fmt(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+
+// Reads one YAML mapping, remembering which keys were consumed so leftovers are reported as unknown.
+class Section {
+ public:
+  Section(const YAML::Node& node, std::string file, std::string path)
+      : node_(node), file_(std::move(file)), path_(std::move(path)) {
+    if (node_ && !node_.IsNull() && !node_.IsMap())
+      throw SceneError(file_, path_, show(node_) + " is not a mapping of keys");
+  }
+
+  bool has(const char* key) {
+    seen_.insert(key);
+    return node_ && node_.IsMap() && node_[key] && !node_[key].IsNull();
+  }
+  YAML::Node raw(const char* key) {
+    seen_.insert(key);
+    return node_ && node_.IsMap() ? node_[key] : YAML::Node();
+  }
+
+  double number(const char* key, double def, const std::function<bool(double)>& ok, const std::string& range) {
+    if (!has(key)) return def;
+    return to_number(node_[key], join(path_, key), ok, range);
+  }
+
+  double to_number(const YAML::Node& n, const std::string& key, const std::function<bool(double)>& ok,
+                   const std::string& range) const {
+    double v;
+    try {
+      if (!n.IsScalar()) throw YAML::BadConversion(n.Mark());
+      v = n.as<double>();
+    } catch (const YAML::Exception&) {
+      throw SceneError(file_, key, show(n) + " is not a number; must be " + range);
+    }
+    if (!std::isfinite(v) || !ok(v)) throw SceneError(file_, key, fmt(v) + " is out of range; must be " + range);
+    return v;
+  }
+
+  std::string word(const char* key, const std::string& def, const std::vector<std::string>& allowed) {
+    if (!has(key)) return def;
+    const YAML::Node n = node_[key];
+    std::string list;
+    for (const auto& a : allowed) list += (list.empty() ? "" : " | ") + a;
+    if (!n.IsScalar()) throw SceneError(file_, join(path_, key), show(n) + " is not one of " + list);
+    const std::string v = n.Scalar();
+    for (const auto& a : allowed)
+      if (v == a) return v;
+    throw SceneError(file_, join(path_, key), "'" + v + "' is not one of " + list);
+  }
+
+  Eigen::Vector2d pair(const char* key, const Eigen::Vector2d& def) {
+    if (!has(key)) return def;
+    const YAML::Node n = node_[key];
+    const std::string k = join(path_, key);
+    if (!n.IsSequence() || n.size() != 2) throw SceneError(file_, k, show(n) + " must be a list of 2 numbers");
+    auto any = [](double) { return true; };
+    return {to_number(n[0], k + "[0]", any, "a finite number"), to_number(n[1], k + "[1]", any, "a finite number")};
+  }
+
+  // Every key present must have been read by now.
+  void finish() const {
+    if (!node_ || !node_.IsMap()) return;
+    for (const auto& kv : node_) {
+      const std::string key = kv.first.as<std::string>();
+      if (!seen_.count(key)) {
+        std::string known;
+        for (const auto& s : seen_) known += (known.empty() ? "" : ", ") + s;
+        throw SceneError(file_, join(path_, key), "unknown key (known here: " + known + ")");
+      }
+    }
+  }
+
+  const std::string& file() const { return file_; }
+  const std::string& path() const { return path_; }
+
+ private:
+  YAML::Node node_;
+  std::string file_, path_;
+  std::set<std::string> seen_;
+};
+
+const auto positive = [](double v) { return v > 0.0; };
+const auto non_negative = [](double v) { return v >= 0.0; };
+const auto finite = [](double) { return true; };
+
+// `top:` and `friction:` may name a file in <config>/tops or <config>/planes instead of giving a mapping.
+YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std::string& key,
+                         const std::string& config_dir, const std::string& folder, std::string& source) {
+  source = file;
+  if (!n || !n.IsScalar()) return n;
+  const std::string name = n.Scalar();
+  const std::string dir = config_dir.empty() ? default_config_dir() : config_dir;
+  const std::string path = dir + "/" + folder + "/" + name + ".yaml";
+  try {
+    source = path;
+    return YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw SceneError(file, key, "'" + name + "' names no file " + path + " (give a mapping or a file name in " +
+                                    dir + "/" + folder + "/)");
+  } catch (const YAML::Exception& e) {
+    throw SceneError(path, "", std::string("not valid YAML: ") + e.what());
+  }
+}
+
+Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin) {
+  Section s(node, file, "top");
+  Top top;
+  top.mass = s.number("mass", top.mass, positive, "> 0 [kg]");
+  top.tip_radius = s.number("tip_radius", top.tip_radius, non_negative, ">= 0 [m]");
+  top.com_offset = s.number("com_offset", top.com_offset, [](double v) { return v != 0.0; }, "nonzero [m]");
+  top.inertia_axial = s.number("inertia_axial", top.inertia_axial, positive, "> 0 [kg m^2]");
+  top.inertia_transverse = s.number("inertia_transverse", top.inertia_transverse, positive, "> 0 [kg m^2]");
+  if (top.inertia_axial > 2.0 * top.inertia_transverse)
+    throw SceneError(file, "top.inertia_axial",
+                     fmt(top.inertia_axial) + " is out of range; must be <= 2 * inertia_transverse = " +
+                         fmt(2.0 * top.inertia_transverse) + " for a rigid axisymmetric body");
+  top.max_tilt = s.number("max_tilt", top.max_tilt, [](double v) { return v > 0.0 && v < M_PI; }, "in (0, pi) [rad]");
+  if (s.has("rotor")) {
+    Section r(s.raw("rotor"), file, "top.rotor");
+    top.has_rotor = true;
+    const double I_f = top.inertia_axial;
+    top.rotor.inertia_axial = r.number("inertia_axial", 0.0, [I_f](double v) { return v > 0.0 && v < I_f; },
+                                       "in (0, top.inertia_axial = " + fmt(I_f) + ") [kg m^2]");
+    if (!r.has("inertia_axial")) throw SceneError(file, "top.rotor.inertia_axial", "required when top.rotor is given");
+    top.rotor.coupling = r.number("coupling", 0.0, non_negative, ">= 0 [N m s]");
+    rotor_spin = r.number("spin", 0.0, finite, "a finite number [rad/s]");
+    r.finish();
+  }
+  s.finish();
+  return top;
+}
+
+}  // namespace
+
+static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps) {
+  FrictionLaw law;
+  const std::string kind = s.word("law", "paper", {"paper", "linearized", "coulomb", "table"});
+  law.kind = kind == "paper" ? FrictionLawKind::paper
+             : kind == "linearized" ? FrictionLawKind::linearized
+             : kind == "coulomb"    ? FrictionLawKind::coulomb
+                                    : FrictionLawKind::table;
+  v_eps = s.number("regularization_speed", 1.0e-9, positive, "> 0 [m/s]");
+  auto only_for = [&](const char* key, FrictionLawKind owner) {
+    if (law.kind != owner && s.has(key))
+      throw SceneError(file, join(s.path(), key),
+                       std::string("is not a parameter of law ") + kind + " (it belongs to law " + to_string(owner) + ")");
+  };
+  only_for("mu_c", FrictionLawKind::paper);
+  only_for("s_c", FrictionLawKind::paper);
+  only_for("mu0", FrictionLawKind::linearized);
+  only_for("k", FrictionLawKind::linearized);
+  only_for("s0", FrictionLawKind::linearized);
+  only_for("mu", FrictionLawKind::coulomb);
+  only_for("points", FrictionLawKind::table);
+  switch (law.kind) {
+    case FrictionLawKind::paper:
+      law.mu_c = s.number("mu_c", law.mu_c, positive, "> 0");
+      law.s_c = s.number("s_c", law.s_c, [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
+      break;
+    case FrictionLawKind::linearized:
+      law.mu0 = s.number("mu0", law.mu0, finite, "a finite number");
+      law.k = s.number("k", law.k, finite, "a finite number");
+      law.s0 = s.number("s0", law.s0, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
+      break;
+    case FrictionLawKind::coulomb:
+      law.mu = s.number("mu", law.mu, non_negative, ">= 0");
+      break;
+    case FrictionLawKind::table: {
+      const YAML::Node pts = s.raw("points");
+      const std::string key = join(s.path(), "points");
+      if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
+      for (std::size_t i = 0; i < pts.size(); ++i) {
+        const std::string k = key + "[" + std::to_string(i) + "]";
+        if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
+        law.points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
+                                s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
+      }
+      break;
+    }
+  }
+  const std::string e = validate(law);
+  if (!e.empty()) throw SceneError(file, "", e);
+  return law;
+}
+
+std::string default_config_dir() {
+  if (const char* env = std::getenv("TOP_SIM_CONFIG_DIR")) return env;
+  return TOP_SIM_SOURCE_CONFIG_DIR;
+}
+
+Scene parse_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir) {
+  Scene scene;
+  scene.source = source;
+  const std::string& file = source;
+  if (!root || !root.IsMap()) throw SceneError(file, "", "a scene must be a YAML mapping with at least the key 'top'");
+  Section s(root, file, "");
+  if (s.has("description") && !s.raw("description").IsScalar())
+    throw SceneError(file, "description", "must be a text");
+
+  // top (required)
+  if (!s.has("top")) throw SceneError(file, "top", "required (a mapping, or the name of a file in config/tops/)");
+  std::string top_source;
+  const YAML::Node top_node = resolve_named(s.raw("top"), file, "top", config_dir, "tops", top_source);
+  scene.model.top = read_top(top_node, top_source, scene.initial.rotor_spin);
+
+  // plane
+  {
+    Section p(s.raw("plane"), file, "plane");
+    const double alpha = p.number("inclination", 0.1, [](double v) { return std::abs(v) < M_PI / 2; },
+                                  "in (-pi/2, pi/2) [rad]");
+    const double g = p.number("gravity", 9.81, positive, "> 0 [m/s^2]");
+    scene.model.plane = make_plane(alpha, g);
+    p.finish();
+  }
+
+  // friction
+  {
+    std::string fsource;
+    const YAML::Node fnode = resolve_named(s.raw("friction"), file, "friction", config_dir, "planes", fsource);
+    Section f(fnode, fsource, "friction");
+    scene.model.friction = read_friction_law(f, fsource, scene.model.regularization_speed);
+    f.finish();
+    if (clamp_is_active(scene.model.friction))
+      scene.warnings.push_back(fsource + ": friction law " + to_string(scene.model.friction.kind) +
+                               " gives mu(s) < 0 for part of s in [0, 1]; it is clamped to 0 there (friction never propels)");
+  }
+
+  // model
+  {
+    Section m(s.raw("model"), file, "model");
+    scene.model.normal_force = m.word("normal_force", "constrained", {"constrained", "static"}) == "static"
+                                   ? NormalForceModel::static_approximation
+                                   : NormalForceModel::constrained;
+    scene.model.kind = m.word("kind", "full", {"full", "adiabatic"}) == "adiabatic" ? ModelKind::adiabatic : ModelKind::full;
+    m.finish();
+    if (scene.model.kind == ModelKind::adiabatic) {
+      const std::string e = adiabatic_validity(scene.model);
+      if (!e.empty()) throw SceneError(file, "model.kind", e);
+    }
+  }
+
+  // regime thresholds
+  {
+    Section r(s.raw("regime"), file, "regime");
+    RegimeThresholds& th = scene.model.regime;
+    th.nutation_angle = r.number("nutation_angle", th.nutation_angle, positive, "> 0 [rad]");
+    th.nutation_rate = r.number("nutation_rate", th.nutation_rate, positive, "> 0 [rad/s]");
+    th.sleep_turn_rate = r.number("sleep_turn_rate", th.sleep_turn_rate, positive, "> 0 [1/s]");
+    th.sleep_acceleration = r.number("sleep_acceleration", th.sleep_acceleration, positive, "> 0 [m/s^2]");
+    r.finish();
+  }
+
+  // initial
+  {
+    Section i(s.raw("initial"), file, "initial");
+    InitialConditions& ic = scene.initial;
+    ic.start = i.word("start", "tilted", {"tilted", "stationary"}) == "stationary" ? StartKind::stationary : StartKind::tilted;
+    ic.tilt = i.number("tilt", ic.tilt, [](double v) { return v >= 0.0 && v < M_PI; }, "in [0, pi) [rad]");
+    ic.tilt_azimuth = i.number("tilt_azimuth", ic.tilt_azimuth, finite, "a finite number [rad]");
+    ic.spin = i.number("spin", ic.spin, finite, "a finite number [rad/s]");
+    ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
+    ic.position = i.pair("position", ic.position);
+    ic.velocity = i.pair("velocity", ic.velocity);
+    i.finish();
+    if (ic.start == StartKind::stationary) {
+      const StationaryState st = stationary_state(scene.model, ic.spin);
+      if (!st.exists) throw SceneError(file, "initial.start", "'stationary' is impossible: " + st.reason);
+    }
+  }
+
+  // integrator
+  {
+    Section g(s.raw("integrator"), file, "integrator");
+    IntegratorSettings& is = scene.integrator;
+    const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4"});
+    parse_method(method, is.method);
+    is.dt = g.number("dt", is.dt, [](double v) { return v > 0.0 && v <= 10.0; }, "in (0, 10] [s]");
+    is.rtol = g.number("rtol", is.rtol, [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
+    is.atol = g.number("atol", is.atol, positive, "> 0");
+    is.max_dt = g.number("max_dt", is.max_dt, non_negative, ">= 0 [s] (0 = unbounded)");
+    g.finish();
+  }
+
+  scene.duration = s.number("duration", scene.duration, positive, "> 0 [s]");
+
+  // events
+  {
+    const YAML::Node ev = s.raw("events");
+    if (ev && !ev.IsNull()) {
+      if (!ev.IsSequence()) throw SceneError(file, "events", show(ev) + " must be a list of {t: ..., ...} entries");
+      double last_t = 0.0;
+      for (std::size_t k = 0; k < ev.size(); ++k) {
+        const std::string path = "events[" + std::to_string(k) + "]";
+        Section e(ev[k], file, path);
+        ScriptedEvent event;
+        if (!e.has("t")) throw SceneError(file, path + ".t", "required: the event time [s]");
+        event.t = e.number("t", 0.0, [last_t](double v) { return v >= last_t; },
+                           ">= 0 and >= the previous event's t = " + fmt(last_t) + " [s]");
+        last_t = event.t;
+        Command& c = event.command;
+        if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, [](double v) { return std::abs(v) < M_PI / 2; }, "in (-pi/2, pi/2) [rad]");
+        if (e.has("spin")) c.spin = e.number("spin", 0.0, finite, "a finite number [rad/s]");
+        if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, finite, "a finite number [rad/s]");
+        if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
+        e.finish();
+        if (c.empty()) throw SceneError(file, path, "changes nothing (give inclination, spin, rotor_spin or rotor_coupling)");
+        const std::string err = validate(c, scene.model);
+        if (!err.empty()) throw SceneError(file, path, err);
+        scene.events.push_back(event);
+      }
+    }
+  }
+  s.finish();
+  return scene;
+}
+
+Scene load_scene(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw SceneError(path, "", "cannot open the scene file");
+  } catch (const YAML::Exception& e) {
+    throw SceneError(path, "", std::string("not valid YAML: ") + e.what());
+  }
+  // A scene in <config>/scenes/ finds its tops and planes in <config>/.
+  std::string dir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));
+  std::string config_dir = dir + "/..";
+  if (!is_dir(config_dir + "/tops")) config_dir = is_dir(dir + "/tops") ? dir : "";
+  return parse_scene(root, path, config_dir);
+}
+
+StateVector initial_state(const Scene& scene) {
+  const Model& model = scene.model;
+  const InitialConditions& ic = scene.initial;
+  if (ic.start == StartKind::stationary) {
+    const StationaryState st = stationary_state(model, ic.spin);
+    return stationary_state_vector(model, st, ic.spin, ic.position, ic.rotor_spin);
+  }
+  // World -> plane: v_P = Rot_x(alpha)^T v_W.
+  const double ca = std::cos(model.plane.inclination), sa = std::sin(model.plane.inclination);
+  auto to_plane = [ca, sa](const Eigen::Vector3d& v) {
+    return Eigen::Vector3d(v.x(), ca * v.y() + sa * v.z(), -sa * v.y() + ca * v.z());
+  };
+  const Eigen::Vector3d f_hat = to_plane(Eigen::Vector3d(std::sin(ic.tilt) * std::cos(ic.tilt_azimuth),
+                                                         std::sin(ic.tilt) * std::sin(ic.tilt_azimuth), std::cos(ic.tilt)));
+  const Eigen::Vector3d w_t = to_plane(Eigen::Vector3d(ic.angular_velocity_transverse.x(), ic.angular_velocity_transverse.y(), 0.0));
+  StateVector y{};
+  set_position(y, ic.position);
+  set_velocity(y, ic.velocity);
+  set_figure_axis(y, f_hat);
+  set_angular_velocity(y, ic.spin * f_hat + (w_t - w_t.dot(f_hat) * f_hat));
+  y[idx::nu] = model.top.has_rotor ? ic.rotor_spin - ic.spin : 0.0;
+  return y;
+}
+
+}  // namespace top_sim

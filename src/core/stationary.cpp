@@ -1,0 +1,127 @@
+// The sleeping state and its analytic results (physics.md section 5).
+#include "top_sim/stationary.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace top_sim {
+
+namespace {
+
+void add_root(std::vector<SlipRoot>& roots, const FrictionLaw& law, double s) {
+  if (!(s >= 0.0 && s <= 1.0)) return;
+  for (const auto& r : roots)
+    if (std::abs(r.s - s) < 1e-14) return;
+  roots.push_back({s, friction_slope(law, s) > 0.0});
+}
+
+}  // namespace
+
+std::vector<SlipRoot> slip_roots(const FrictionLaw& law, double tan_alpha) {
+  std::vector<SlipRoot> roots;
+  const double t = std::abs(tan_alpha);
+  // A law with mu(0) > tan(alpha) sticks: the regularised contact holds |v_t| ~ v_eps, i.e. s* = 0.
+  if (friction_coefficient(law, 0.0) > t) roots.push_back({0.0, true});
+  switch (law.kind) {
+    case FrictionLawKind::paper: {
+      const double disc = 1.0 - t / law.mu_c;
+      if (disc >= 0.0) {
+        const double q = std::sqrt(disc);
+        add_root(roots, law, law.s_c * (1.0 - q));
+        if (q > 0.0) {
+          const double s_plus = law.s_c * (1.0 + q);
+          if (s_plus <= 1.0) roots.push_back({s_plus, false});
+        }
+      }
+      break;
+    }
+    case FrictionLawKind::linearized:
+      if (law.k != 0.0) add_root(roots, law, law.s0 + (t - law.mu0) / law.k);
+      break;
+    case FrictionLawKind::coulomb:
+      break;  // constant mu: no isolated balance (only the stick root above)
+    case FrictionLawKind::table: {
+      const auto& p = law.points;
+      for (std::size_t i = 1; i < p.size(); ++i) {
+        const double a = std::max(p[i - 1].second, 0.0) - t, b = std::max(p[i].second, 0.0) - t;
+        if (a == b || (a * b > 0.0)) continue;  // no sign change on this segment
+        const double s = p[i - 1].first + (p[i].first - p[i - 1].first) * a / (a - b);
+        if (roots.empty() || std::abs(roots.back().s - s) > 1e-14) roots.push_back({s, b > a});
+      }
+      break;
+    }
+  }
+  std::sort(roots.begin(), roots.end(), [](const SlipRoot& x, const SlipRoot& y) { return x.s < y.s; });
+  return roots;
+}
+
+double critical_inclination(const FrictionLaw& law) { return std::atan(max_friction_coefficient(law)); }
+
+StationaryState stationary_state(const Model& model, double spin) {
+  StationaryState st;
+  const double R = model.top.tip_radius;
+  const double f = model.top.com_offset;
+  const double alpha = model.plane.inclination;
+  std::ostringstream why;
+  if (f <= 0.0) {
+    why << "com_offset f = " << f << " <= 0: the stationary solver covers ordinary tops (f > 0) only";
+    st.reason = why.str();
+    return st;
+  }
+  if (R * std::abs(std::sin(alpha)) > f) {
+    why << "R sin(alpha) = " << R * std::abs(std::sin(alpha)) << " m exceeds f = " << f
+        << " m: the centre of mass cannot sit above the contact point, no stationary state exists";
+    st.reason = why.str();
+    return st;
+  }
+  const auto roots = slip_roots(model.friction, std::tan(alpha));
+  auto stable = std::find_if(roots.begin(), roots.end(), [](const SlipRoot& r) { return r.stable; });
+  if (stable == roots.end()) {
+    why << "tan(alpha) = " << std::tan(std::abs(alpha)) << " has no stable balance mu(s*) = tan(alpha) (max mu = "
+        << max_friction_coefficient(model.friction) << ", alpha_c = " << critical_inclination(model.friction)
+        << " rad): the top slides downhill";
+    st.reason = why.str();
+    return st;
+  }
+  st.exists = true;
+  st.slip = stable->s;
+  auto unstable = std::find_if(stable, roots.end(), [](const SlipRoot& r) { return !r.stable; });
+  st.slip_unstable = unstable == roots.end() ? -1.0 : unstable->s;
+
+  // f_hat* = -(R/f) n + f_g g_hat puts the centre of mass vertically above the contact point.
+  const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
+  const double f_g = -(R / f) * std::cos(alpha) - std::sqrt(1.0 - std::pow(R * std::sin(alpha) / f, 2));
+  st.f_hat = (-(R / f) * Eigen::Vector3d::UnitZ() + f_g * g_hat).normalized();
+  st.omega = spin * st.f_hat;
+
+  // Rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+) downhill, tan(phi+/2) = s*.
+  const Eigen::Vector3d rolling = R * Eigen::Vector3d(st.omega.y(), -st.omega.x(), 0.0);
+  st.rolling_speed = rolling.norm();
+  const double phi_plus = 2.0 * std::atan(st.slip);
+  st.sliding_speed = st.rolling_speed * std::tan(phi_plus);
+  const Eigen::Vector2d downhill(g_hat.x(), g_hat.y());
+  const Eigen::Vector2d down_dir = downhill.norm() > 0.0 ? Eigen::Vector2d(downhill.normalized()) : Eigen::Vector2d::Zero();
+  st.velocity = Eigen::Vector2d(rolling.x(), rolling.y()) + st.sliding_speed * down_dir;
+  st.phi_defined = st.rolling_speed > 0.0;
+  if (st.phi_defined) {
+    st.phi = std::atan2(-st.velocity.y(), st.velocity.x());
+  } else {
+    st.reason = R == 0.0 ? "R = 0: the sleeping top does not roll, so its direction of travel phi* is undefined"
+                         : "the sleeping top does not move (alpha = 0 or spin = 0): phi* is undefined";
+  }
+  return st;
+}
+
+StateVector stationary_state_vector(const Model& model, const StationaryState& st, double spin,
+                                    const Eigen::Vector2d& position, double rotor_spin) {
+  StateVector y{};
+  set_position(y, position);
+  set_velocity(y, st.velocity);
+  set_figure_axis(y, st.f_hat);
+  set_angular_velocity(y, spin * st.f_hat);
+  y[idx::nu] = model.top.has_rotor ? rotor_spin - spin : 0.0;
+  return y;
+}
+
+}  // namespace top_sim
