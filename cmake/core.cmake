@@ -13,4 +13,9 @@ target_link_libraries(top_sim_cli_common PUBLIC top_sim_core)
 
 add_executable(top_sim_run src/cli/top_sim_run.cpp)
 target_link_libraries(top_sim_run top_sim_cli_common)
+# Optional LCM bridge: `top_sim_run --lcm URL` streams in real time without ROS.
+include(${CMAKE_CURRENT_LIST_DIR}/lcm.cmake)
+if(TARGET top_sim_lcm)
+  target_link_libraries(top_sim_run top_sim_lcm)
+endif()
 

@@ -1,22 +1,31 @@
-// top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE]
+// top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE] [--lcm URL [--lcm-channel C]]
 // Runs one scene without ROS; exit 0 ok, 2 bad scene or argument, 3 contact fault.
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
+#include <memory>
 #include <string>
+#include <thread>
 
 #include "run_output.hpp"
 #include "top_sim/scene.hpp"
+#ifdef TOP_SIM_HAVE_LCM
+#include "lcm_publisher.hpp"
+#endif
 
 namespace {
 
 const char* kUsage =
     "usage: top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE|-]\n"
+    "                   [--lcm URL [--lcm-channel NAME]]\n"
     "  --duration S    simulated seconds (default: the scene's duration)\n"
     "  --csv FILE      write the state at --rate samples per simulated second\n"
     "  --rate HZ       CSV sample rate (default 100)\n"
-    "  --summary FILE  write the JSON summary (- for standard output)\n";
+    "  --summary FILE  write the JSON summary (- for standard output)\n"
+    "  --lcm URL       stream top_sim.top_state_t in real time at --rate Hz over LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
+    "  --lcm-channel C LCM channel (default TOP_STATE)\n";
 
 struct BadArgument {
   std::string message;
@@ -34,7 +43,7 @@ double positive_number(const std::string& flag, const char* text) {
 
 int main(int argc, char** argv) {
   using namespace top_sim;
-  std::string scene_path, csv_path, summary_path;
+  std::string scene_path, csv_path, summary_path, lcm_url, lcm_channel = "TOP_STATE";
   double duration = -1.0, rate = 100.0;
   try {
     for (int i = 1; i < argc; ++i) {
@@ -54,6 +63,12 @@ int main(int argc, char** argv) {
         csv_path = value();
       } else if (a == "--summary") {
         summary_path = value();
+      } else if (a == "--lcm") {
+        lcm_url = value();
+        if (lcm_url.empty()) throw BadArgument{"--lcm = '': must be an LCM URL such as udpm://239.255.76.67:7667?ttl=0"};
+      } else if (a == "--lcm-channel") {
+        lcm_channel = value();
+        if (lcm_channel.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
       } else if (!a.empty() && a[0] == '-') {
         throw BadArgument{"unknown option '" + a + "'"};
       } else if (scene_path.empty()) {
@@ -63,6 +78,9 @@ int main(int argc, char** argv) {
       }
     }
     if (scene_path.empty()) throw BadArgument{"no scene file given"};
+#ifndef TOP_SIM_HAVE_LCM
+    if (!lcm_url.empty()) throw BadArgument{"--lcm: this build has no LCM support (liblcm-dev and lcm-gen were not found)"};
+#endif
   } catch (const BadArgument& e) {
     std::cerr << "top_sim_run: " << e.message << "\n" << kUsage;
     return 2;
@@ -94,6 +112,31 @@ int main(int argc, char** argv) {
     opt.sample_rate = rate;
     opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
   }
+#ifdef TOP_SIM_HAVE_LCM
+  std::unique_ptr<top_sim_lcm::Publisher> lcm;
+  if (!lcm_url.empty()) {
+    lcm = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
+    if (!lcm->ok()) {
+      std::cerr << "top_sim_run: --lcm = '" << lcm_url << "': " << lcm->error() << "\n";
+      return 2;
+    }
+    // Real time: each sample waits for its wall-clock instant, then goes out on LCM.
+    using clock = std::chrono::steady_clock;
+    const clock::time_point wall0 = clock::now();
+    const double t0 = sim.time();
+    auto write_csv = opt.on_sample;
+    opt.sample_rate = rate;
+    opt.on_sample = [&, write_csv, wall0, t0](const Snapshot& s) {
+      std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(
+                                                std::chrono::duration<double>(s.t - t0)));
+      const double wall = std::chrono::duration<double>(clock::now() - wall0).count();
+      static bool warned = false;  // one message, not one per sample
+      if (!lcm->publish(s, wall > 0.0 ? (s.t - t0) / wall : 1.0) && !warned && (warned = true))
+        std::cerr << "top_sim_run: LCM publish on " << lcm_channel << " failed at t = " << s.t << " s\n";
+      if (write_csv) write_csv(s);
+    };
+  }
+#endif
   const RunResult r = run(sim, opt);
   const std::string json = summary_json(scene, r);
   if (summary_path == "-") {

@@ -1,0 +1,77 @@
+// LCM adapter over the core's Snapshot.
+#include "lcm_publisher.hpp"
+
+#include <cmath>
+#include <lcm/lcm-cpp.hpp>
+
+#include "top_sim/top_state_t.hpp"
+
+namespace top_sim_lcm {
+
+namespace {
+void copy3(const Eigen::Vector3d& v, double* out) {
+  for (int i = 0; i < 3; ++i) out[i] = v[i];
+}
+
+int8_t regime_code(top_sim::Regime r) {
+  switch (r) {
+    case top_sim::Regime::nutating: return top_sim::top_state_t::NUTATING;
+    case top_sim::Regime::precessing: return top_sim::top_state_t::PRECESSING;
+    case top_sim::Regime::sleeping: return top_sim::top_state_t::SLEEPING;
+    case top_sim::Regime::sliding: return top_sim::top_state_t::SLIDING;
+    case top_sim::Regime::contact_fault: return top_sim::top_state_t::CONTACT_FAULT;
+  }
+  return top_sim::top_state_t::CONTACT_FAULT;
+}
+}  // namespace
+
+void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out) {
+  out.utime = static_cast<int64_t>(std::llround(s.t * 1e6));
+  out.alpha = s.alpha;
+  copy3(s.com, out.position);
+  out.orientation[0] = s.orientation.w();
+  out.orientation[1] = s.orientation.x();
+  out.orientation[2] = s.orientation.y();
+  out.orientation[3] = s.orientation.z();
+  copy3(s.com_velocity, out.velocity);
+  copy3(s.angular_velocity, out.angular_velocity);
+  copy3(s.tip_center, out.tip_center);
+  copy3(s.tip_velocity, out.tip_velocity);
+  copy3(s.contact_point, out.contact_point);
+  copy3(s.figure_axis, out.figure_axis);
+  out.spin = s.spin;
+  out.has_rotor = s.has_rotor;
+  out.rotor_spin = s.rotor_spin;
+  out.slip = s.slip;
+  out.mu = s.mu;
+  out.normal_force = s.normal_force;
+  copy3(s.friction_force, out.friction_force);
+  out.phi = s.phi;
+  out.has_stationary_state = s.has_stationary_state;
+  out.phi_star = s.phi_star;
+  out.regime = regime_code(s.regime);
+  out.energy = s.energy;
+  out.dissipated_work = s.dissipated_work;
+  out.energy_balance_residual = s.energy_balance_residual;
+  out.real_time_factor = real_time_factor;
+  out.fault = s.fault_message;
+}
+
+Publisher::Publisher(const std::string& url, const std::string& channel) : channel_(channel) {
+  lcm_ = std::make_unique<lcm::LCM>(url);
+  ok_ = lcm_->good();
+  if (!ok_)
+    error_ = "LCM cannot open '" + url +
+             "' (for udpm:// on one machine a multicast route is needed: ip route add 224.0.0.0/4 dev lo)";
+}
+
+Publisher::~Publisher() = default;
+
+bool Publisher::publish(const top_sim::Snapshot& s, double real_time_factor) {
+  if (!ok_) return false;
+  top_sim::top_state_t msg;
+  to_lcm(s, real_time_factor, msg);
+  return lcm_->publish(channel_, &msg) == 0;
+}
+
+}  // namespace top_sim_lcm

@@ -1,0 +1,35 @@
+// LCM adapter: maps a core Snapshot onto top_sim.top_state_t and publishes it (not part of top_sim_core).
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "top_sim/snapshot.hpp"
+
+namespace lcm { class LCM; }
+namespace top_sim { class top_state_t; }
+
+namespace top_sim_lcm {
+
+// Field-by-field copy of the snapshot; real_time_factor is the adapter's achieved pacing.
+void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out);
+
+// Opens one LCM instance; when it cannot (e.g. no multicast route) ok() is false and error() says why.
+class Publisher {
+ public:
+  Publisher(const std::string& url, const std::string& channel);
+  ~Publisher();
+  bool ok() const { return ok_; }
+  const std::string& error() const { return error_; }
+  const std::string& channel() const { return channel_; }
+  // Returns false when the send failed (nothing else happens: the caller keeps running).
+  bool publish(const top_sim::Snapshot& s, double real_time_factor);
+
+ private:
+  std::unique_ptr<lcm::LCM> lcm_;
+  std::string channel_;
+  bool ok_ = false;
+  std::string error_;
+};
+
+}  // namespace top_sim_lcm
