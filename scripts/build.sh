@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Builds top_sim (Release) in the catkin workspace $TOP_SIM_WS (default <repo>/.catkin_ws), installing the
+# Debian packages first if any is missing (set TOP_SIM_SKIP_DEPS=1 to skip that check).
+# Extra arguments go to catkin_make, e.g. `bash scripts/build.sh tests`.
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+
+if [ "${TOP_SIM_SKIP_DEPS:-0}" != 1 ]; then
+  bash "$TOP_SIM_REPO/scripts/install_deps.sh"
+fi
+
+# The workspace's only package is a symlink to this repository.
+mkdir -p "$TOP_SIM_WS/src"
+TOP_SIM_WS=$(cd "$TOP_SIM_WS" && pwd -P)   # physical path, as catkin_make records it in CMakeCache.txt
+link=$TOP_SIM_WS/src/top_sim
+if [ -L "$link" ]; then
+  [ "$(readlink -f "$link")" = "$TOP_SIM_REPO" ] || ln -sfn "$TOP_SIM_REPO" "$link"
+elif [ -e "$link" ]; then
+  top_sim_die "$link exists and is not a symlink to $TOP_SIM_REPO; move it away or set TOP_SIM_WS"
+else
+  ln -s "$TOP_SIM_REPO" "$link"
+fi
+
+# A build tree configured for another source path (workspace moved or copied) cannot be reused.
+cache=$TOP_SIM_WS/build/CMakeCache.txt
+if [ -f "$cache" ]; then
+  configured=$(sed -n 's/^CMAKE_HOME_DIRECTORY:INTERNAL=//p' "$cache")
+  if [ "$configured" != "$TOP_SIM_WS/src" ]; then
+    top_sim_log "build tree was configured for '$configured', not '$TOP_SIM_WS/src': removing build/ and devel/"
+    rm -rf "$TOP_SIM_WS/build" "$TOP_SIM_WS/devel"
+  fi
+fi
+
+top_sim_log "catkin_make in $TOP_SIM_WS (-j$TOP_SIM_JOBS) $*"
+cd "$TOP_SIM_WS"
+catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$TOP_SIM_JOBS" "$@"

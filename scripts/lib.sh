@@ -1,0 +1,42 @@
+# Shared helpers for scripts/*.sh: source it (bash), do not run it.
+# Sets TOP_SIM_REPO (repository root) and TOP_SIM_WS (catkin workspace), the environment every script needs,
+# and the Debian package list.
+
+TOP_SIM_REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
+export TOP_SIM_WS=${TOP_SIM_WS:-$TOP_SIM_REPO/.catkin_ws}
+export TOP_SIM_JOBS=${TOP_SIM_JOBS:-2}
+# /usr/bin first: a pyenv python3 earlier on PATH has no ROS modules.
+export PATH=/usr/bin:$PATH
+export ROS_HOSTNAME=${ROS_HOSTNAME:-localhost}
+
+# Everything the build, the ROS node, LCM, plots and screenshots need (all exist in Debian bookworm).
+TOP_SIM_PACKAGES=(
+  ros-core-dev catkin libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev librostest-dev python3-rostest
+  ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libvisualization-msgs-dev libnav-msgs-dev
+  python3-rosbag rviz libeigen3-dev libboost-dev libyaml-cpp-dev liblcm-dev liblcm-bin libglib2.0-dev
+  libgtest-dev google-mock libbenchmark-dev python3-geometry-msgs python3-tf2-msgs python3-visualization-msgs
+  python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
+)
+
+top_sim_log() { printf '[top_sim] %s\n' "$*" >&2; }
+top_sim_die() { printf '[top_sim] error: %s\n' "$*" >&2; exit 1; }
+
+# Runs a command as root: directly when root, else through sudo.
+top_sim_as_root() {
+  if [ "$(id -u)" -eq 0 ]; then
+    "$@"
+  elif command -v sudo >/dev/null 2>&1; then
+    sudo "$@"
+  else
+    top_sim_die "installing packages needs root; run as root or install sudo (command: $*)"
+  fi
+}
+
+# Prints the packages of TOP_SIM_PACKAGES that are not fully installed, one per line.
+top_sim_missing_packages() {
+  local p
+  for p in "${TOP_SIM_PACKAGES[@]}"; do
+    dpkg-query -W -f='${db:Status-Abbrev}\n' "$p" 2>/dev/null | grep -q '^ii' || echo "$p"
+  done
+}

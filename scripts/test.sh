@@ -1,0 +1,126 @@
+#!/usr/bin/env bash
+# Runs the whole test suite (gtest and rostest, via catkin's run_tests), installing and building first if needed.
+# Prints every test case, a summary, and as the last line `N passed, N failed`.
+# Exit 0 only if the build succeeded, at least one test ran, and no test failed or errored.
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+
+status=0   # becomes 1 on any failure; the counts line is printed in every case
+if ! bash "$TOP_SIM_REPO/scripts/install_deps.sh"; then
+  top_sim_log "INSTALLING THE DEBIAN PACKAGES FAILED"; status=1
+elif ! TOP_SIM_SKIP_DEPS=1 bash "$TOP_SIM_REPO/scripts/build.sh"; then
+  top_sim_log "BUILD FAILED"; status=1
+fi
+mkdir -p "$TOP_SIM_WS"
+TOP_SIM_WS=$(cd "$TOP_SIM_WS" && pwd -P)
+
+# LCM's default UDP multicast URL needs a multicast route; a sandbox without one gets it on loopback.
+if [ "$(id -u)" -eq 0 ] && command -v ip >/dev/null 2>&1 && [ -z "$(ip route show 224.0.0.0/4 2>/dev/null)" ]; then
+  ip route add 224.0.0.0/4 dev lo 2>/dev/null && top_sim_log "added multicast route 224.0.0.0/4 dev lo" || true
+fi
+
+results=$TOP_SIM_WS/build/test_results
+rm -rf "$results"   # only this run's results are counted
+cd "$TOP_SIM_WS"
+
+if [ "$status" -eq 0 ]; then
+  top_sim_log "building the tests"
+  if ! catkin_make -j"$TOP_SIM_JOBS" tests; then
+    top_sim_log "BUILD FAILED (tests)"; status=1
+  fi
+fi
+
+if [ "$status" -eq 0 ]; then
+  # One test at a time (-j1): tests share 2 cores, ROS masters and LCM channels. The timeout stops a hung test.
+  top_sim_log "running the tests"
+  set +e
+  timeout --kill-after=30 "${TOP_SIM_TEST_TIMEOUT:-3000}" catkin_make -j1 run_tests
+  rc=$?
+  set -e
+  # run_tests exits 0 even when tests fail (the verdict comes from the XML below); non-zero means it broke.
+  if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
+    top_sim_log "run_tests TIMED OUT after ${TOP_SIM_TEST_TIMEOUT:-3000} s"; status=1
+  elif [ "$rc" -ne 0 ]; then
+    top_sim_log "run_tests FAILED (exit $rc)"; status=1
+  fi
+fi
+
+set +e
+/usr/bin/python3 - "$results" "$status" <<'PY'
+# Counts test cases in the JUnit XML files of catkin's test_results directory.
+import os, sys
+import xml.etree.ElementTree as ET
+
+root_dir = sys.argv[1]
+earlier_failure = sys.argv[2] != '0'   # install, build or run_tests failed before any XML was read
+files = []
+for dirpath, dirnames, filenames in os.walk(root_dir):
+    dirnames.sort()
+    files += [os.path.join(dirpath, f) for f in sorted(filenames) if f.endswith('.xml')]
+
+def first_lines(text, n=20):
+    lines = text.strip().splitlines()
+    return lines[:n] + (['... (%d more lines)' % (len(lines) - n)] if len(lines) > n else [])
+
+def wrapper_duplicate(path, case, failed):
+    # rostest writes rostest-*.xml with one case "test<node>" per test node next to the node's own
+    # rosunit-<node>.xml; a passing wrapper case only says that file exists, so it is not counted twice.
+    base = os.path.basename(path)
+    name = case.get('name', '')
+    return (base.startswith('rostest-') and not failed and name.startswith('test')
+            and os.path.isfile(os.path.join(os.path.dirname(path), 'rosunit-%s.xml' % name[4:])))
+
+passed = failed = skipped = 0
+per_file = []
+for path in files:
+    name = os.path.relpath(path, root_dir)
+    print('== %s' % name)
+    try:
+        tree = ET.parse(path)
+    except ET.ParseError as e:
+        # An unreadable result file means a test that did not finish cleanly.
+        print('FAIL  %s (unreadable JUnit XML: %s)' % (name, e))
+        failed += 1
+        per_file.append((name, 0, 1, 0))
+        continue
+    fp = ff = fs = 0
+    for case in tree.getroot().iter('testcase'):
+        label = '%s.%s' % (case.get('classname', ''), case.get('name', ''))
+        problems = case.findall('failure') + case.findall('error')
+        if wrapper_duplicate(path, case, bool(problems)):
+            continue
+        if problems:
+            ff += 1
+            print('FAIL  %s (%s s)' % (label, case.get('time', '?')))
+            for p in problems:
+                message, text = (p.get('message') or '').strip(), (p.text or '').strip()
+                body = text if message in text else message + '\n' + text
+                for line in first_lines(body):
+                    print('        ' + line)
+        elif case.find('skipped') is not None or case.get('status') == 'notrun' \
+                or case.get('result') in ('skipped', 'suppressed'):
+            fs += 1
+            print('SKIP  %s' % label)
+        else:
+            fp += 1
+            print('PASS  %s (%s s)' % (label, case.get('time', '?')))
+    passed += fp; failed += ff; skipped += fs
+    per_file.append((name, fp, ff, fs))
+
+print()
+print('Summary (%s):' % root_dir)
+for name, fp, ff, fs in per_file:
+    print('  %-56s %4d passed %4d failed %4d skipped' % (name, fp, ff, fs))
+if not files:
+    print('  no JUnit result files: no test ran')
+if skipped:
+    print('%d skipped or disabled (not counted below)' % skipped)
+if failed or passed == 0 or earlier_failure:
+    print('TEST SUITE FAILED' + (' (install, build or run_tests failed: see above)' if earlier_failure else ''))
+print('%d passed, %d failed' % (passed, failed))
+sys.exit(1 if failed or passed == 0 else 0)
+PY
+verdict=$?
+set -e
+[ "$verdict" -eq 0 ] || status=1
+exit "$status"   # nothing printed after the counts: they stay the last line
