@@ -3,7 +3,7 @@ if(CATKIN_ENABLE_TESTING)
   file(GLOB TOP_SIM_CORE_TESTS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
   catkin_add_gtest(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
   if(TARGET top_sim_core_tests)
-    target_link_libraries(top_sim_core_tests top_sim_cli_common)
+    target_link_libraries(top_sim_core_tests top_sim_cli_common gtest_main)  # catkin links gtest only
     target_compile_definitions(top_sim_core_tests PRIVATE
       TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
       TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>")
