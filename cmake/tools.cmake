@@ -1,0 +1,11 @@
+# ROS-free tools that reproduce the paper: top_sim_sweep (grid over alpha -> CSV).
+find_package(Threads REQUIRED)
+
+# The per-point sweep logic lives in the shared CLI library so the paper tests run the same code.
+target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sweep_point.cpp)
+
+add_executable(top_sim_sweep src/cli/top_sim_sweep.cpp)
+target_link_libraries(top_sim_sweep top_sim_cli_common Threads::Threads)
+
+# Included before catkin_package(), so catkin's destination variable is not set yet: use its value.
+install(TARGETS top_sim_sweep RUNTIME DESTINATION lib/${PROJECT_NAME})
