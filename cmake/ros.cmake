@@ -1,0 +1,44 @@
+# The ROS node, messages, dynamic_reconfigure and rostests (included after the core targets exist).
+find_package(catkin REQUIRED COMPONENTS
+  roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
+  tf2 tf2_ros diagnostic_updater dynamic_reconfigure message_generation)
+
+add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg)
+generate_messages(DEPENDENCIES std_msgs geometry_msgs)
+generate_dynamic_reconfigure_options(cfg/TopSim.cfg)
+
+catkin_package(
+  INCLUDE_DIRS include
+  LIBRARIES top_sim_core
+  CATKIN_DEPENDS message_runtime roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs
+                 rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure)
+
+# Message conversions and the parameter-tree reader, shared by the node and its unit tests.
+add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp)
+target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
+target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
+add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
+
+add_executable(top_sim_node src/ros/top_sim_node.cpp)
+target_link_libraries(top_sim_node top_sim_ros ${catkin_LIBRARIES})
+add_dependencies(top_sim_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
+if(TARGET top_sim_lcm)
+  target_link_libraries(top_sim_node top_sim_lcm)
+  install(TARGETS top_sim_lcm
+    ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+    LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+endif()
+
+install(TARGETS top_sim_ros top_sim_node
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
+  RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+install(DIRECTORY launch lcm DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+install(DIRECTORY rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION} OPTIONAL)
+
+if(CATKIN_ENABLE_TESTING)
+  find_package(rostest REQUIRED)
+  include(${CMAKE_CURRENT_SOURCE_DIR}/cmake/ros_tests.cmake OPTIONAL)
+endif()
+
+include(${CMAKE_CURRENT_SOURCE_DIR}/cmake/ros_tools.cmake OPTIONAL)

@@ -1,0 +1,221 @@
+#include "conversions.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+namespace top_sim_ros {
+
+namespace {
+
+bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
+
+geometry_msgs::Point point(const Eigen::Vector3d& v) {
+  geometry_msgs::Point p;
+  p.x = v.x(); p.y = v.y(); p.z = v.z();
+  return p;
+}
+
+geometry_msgs::Vector3 vector(const Eigen::Vector3d& v) {
+  geometry_msgs::Vector3 p;
+  p.x = v.x(); p.y = v.y(); p.z = v.z();
+  return p;
+}
+
+geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
+  geometry_msgs::Quaternion m;
+  m.w = q.w(); m.x = q.x(); m.y = q.y(); m.z = q.z();
+  return m;
+}
+
+visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int type,
+                                  float r, float g, float b) {
+  visualization_msgs::Marker m;
+  m.header.frame_id = frame;
+  m.header.stamp = stamp;
+  m.ns = ns;
+  m.id = 0;
+  m.type = type;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  m.color.r = r; m.color.g = g; m.color.b = b; m.color.a = 1.0f;
+  m.frame_locked = true;
+  return m;
+}
+
+// Arrow length saturating at `max_len`: direction matters more than size on screen.
+double arrow_length(double value, double reference, double max_len) {
+  const double a = std::abs(value);
+  return max_len * a / (a + reference);
+}
+
+}  // namespace
+
+bool all_finite(const top_sim::Snapshot& s) {
+  const double scalars[] = {s.t, s.alpha, s.spin, s.rotor_spin, s.spin_phase, s.slip, s.mu, s.normal_force, s.phi,
+                            s.phi_star, s.energy, s.dissipated_work, s.energy_balance_residual};
+  for (double v : scalars)
+    if (!std::isfinite(v)) return false;
+  return finite3(s.tip_center) && finite3(s.com) && s.orientation.coeffs().allFinite() && finite3(s.com_velocity) &&
+         finite3(s.tip_velocity) && finite3(s.contact_point) && finite3(s.figure_axis) &&
+         finite3(s.angular_velocity) && finite3(s.friction_force);
+}
+
+uint8_t regime_code(top_sim::Regime r) {
+  switch (r) {
+    case top_sim::Regime::nutating: return top_sim::TopState::NUTATING;
+    case top_sim::Regime::precessing: return top_sim::TopState::PRECESSING;
+    case top_sim::Regime::sleeping: return top_sim::TopState::SLEEPING;
+    case top_sim::Regime::sliding: return top_sim::TopState::SLIDING;
+    case top_sim::Regime::contact_fault: return top_sim::TopState::CONTACT_FAULT;
+  }
+  return top_sim::TopState::CONTACT_FAULT;
+}
+
+void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
+            top_sim::TopState& out) {
+  out.header.stamp = stamp;
+  out.header.frame_id = plane_frame;
+  out.sim_time = s.t;
+  out.alpha = s.alpha;
+  out.pose.position = point(s.com);
+  out.pose.orientation = quaternion(s.orientation);
+  out.twist.linear = vector(s.com_velocity);
+  out.twist.angular = vector(s.angular_velocity);
+  out.tip_center = point(s.tip_center);
+  out.tip_velocity = vector(s.tip_velocity);
+  out.contact_point = point(s.contact_point);
+  out.figure_axis = vector(s.figure_axis);
+  out.spin = s.spin;
+  out.has_rotor = s.has_rotor;
+  out.rotor_spin = s.rotor_spin;
+  out.slip = s.slip;
+  out.mu = s.mu;
+  out.normal_force = s.normal_force;
+  out.friction_force = vector(s.friction_force);
+  out.phi = s.phi;
+  out.has_stationary_state = s.has_stationary_state;
+  out.phi_star = s.phi_star;
+  out.regime = regime_code(s.regime);
+  out.regime_name = top_sim::to_string(s.regime);
+  out.energy = s.energy;
+  out.dissipated_work = s.dissipated_work;
+  out.energy_balance_residual = s.energy_balance_residual;
+  out.fault = s.fault_message;
+}
+
+void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+                   geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top) {
+  world_plane.header.stamp = stamp;
+  world_plane.header.frame_id = frames.world;
+  world_plane.child_frame_id = frames.plane;
+  world_plane.transform.translation = geometry_msgs::Vector3();
+  // Plane y is uphill: rotating world about x by +alpha lifts it.
+  world_plane.transform.rotation =
+      quaternion(Eigen::Quaterniond(Eigen::AngleAxisd(s.alpha, Eigen::Vector3d::UnitX())));
+  plane_top.header.stamp = stamp;
+  plane_top.header.frame_id = frames.plane;
+  plane_top.child_frame_id = frames.top;
+  plane_top.transform.translation = vector(s.com);
+  plane_top.transform.rotation = quaternion(s.orientation.normalized());
+}
+
+void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  out.markers.clear();
+  const double f = top.com_offset, R = top.tip_radius;
+  // Body disk with the axial inertia of the top: I_f = m r^2 / 2.
+  const double body_r = std::sqrt(2.0 * top.inertia_axial / top.mass);
+  const double body_h = std::max(0.25 * body_r, 2.0 * R);
+
+  // Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
+  Marker plane = marker(frames.plane, stamp, "plane", Marker::CUBE, 0.75f, 0.78f, 0.85f);
+  const double cell = 0.25;
+  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
+  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
+  plane.pose.position.z = -0.0005;
+  plane.scale.x = plane.scale.y = 4 * cell;
+  plane.scale.z = 0.001;
+  plane.color.a = 0.6f;
+  out.markers.push_back(plane);
+
+  Marker tip = marker(frames.plane, stamp, "tip", Marker::SPHERE, 0.9f, 0.2f, 0.2f);
+  tip.pose.position = point(s.tip_center);
+  tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * R;
+  out.markers.push_back(tip);
+
+  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, 0.7f, 0.7f, 0.75f);
+  body.scale.x = body.scale.y = 2.0 * body_r;
+  body.scale.z = body_h;
+  out.markers.push_back(body);
+
+  // Stem along the figure axis (top frame z) from the tip sphere through the body.
+  Marker stem = marker(frames.top, stamp, "stem", Marker::CYLINDER, 0.3f, 0.3f, 0.35f);
+  const double z0 = -f, z1 = 0.5 * f + body_h;
+  stem.pose.position.z = 0.5 * (z0 + z1);
+  stem.scale.x = stem.scale.y = std::max(0.4 * body_h, 1.5 * R);
+  stem.scale.z = z1 - z0;
+  out.markers.push_back(stem);
+
+  // Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule).
+  Marker spin = marker(frames.plane, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
+  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
+  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
+  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
+  out.markers.push_back(spin);
+
+  Marker vel = marker(frames.plane, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
+  const double v = s.tip_velocity.norm();
+  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
+  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
+  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
+  out.markers.push_back(vel);
+}
+
+bool friction_kind(const std::string& name, top_sim::FrictionLawKind& kind) {
+  using K = top_sim::FrictionLawKind;
+  for (K k : {K::paper, K::linearized, K::coulomb, K::table})
+    if (name == top_sim::to_string(k)) {
+      kind = k;
+      return true;
+    }
+  return false;
+}
+
+top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {
+  top_sim::Command c;
+  error.clear();
+  if (msg.set_inclination) c.inclination = msg.inclination;
+  if (msg.set_spin) c.spin = msg.spin;
+  if (msg.set_rotor_spin) c.rotor_spin = msg.rotor_spin;
+  if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
+  if (msg.set_friction) {
+    top_sim::FrictionLaw law;
+    if (!friction_kind(msg.friction_law, law.kind)) {
+      error = "friction_law = '" + msg.friction_law + "': must be one of paper, linearized, coulomb, table";
+      return c;
+    }
+    law.mu_c = msg.mu_c;
+    law.s_c = msg.s_c;
+    law.mu0 = msg.mu0;
+    law.k = msg.k;
+    law.s0 = msg.s0;
+    law.mu = msg.mu;
+    if (law.kind == top_sim::FrictionLawKind::table) {
+      if (msg.table_s.size() != msg.table_mu.size()) {
+        std::ostringstream os;
+        os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()
+           << ": must have the same length";
+        error = os.str();
+        return c;
+      }
+      for (std::size_t i = 0; i < msg.table_s.size(); ++i) law.points.emplace_back(msg.table_s[i], msg.table_mu[i]);
+    }
+    c.friction = law;
+  }
+  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ... all false)";
+  return c;
+}
+
+}  // namespace top_sim_ros

@@ -1,0 +1,45 @@
+// Snapshot -> ROS messages and TopCommand -> core Command: field-by-field maps, no physics here.
+#pragma once
+
+#include <geometry_msgs/TransformStamped.h>
+#include <ros/time.h>
+#include <string>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "top_sim/TopCommand.h"
+#include "top_sim/TopState.h"
+#include "top_sim/command.hpp"
+#include "top_sim/model.hpp"
+#include "top_sim/snapshot.hpp"
+
+namespace top_sim_ros {
+
+struct Frames {
+  std::string world = "world";
+  std::string plane = "plane";
+  std::string top = "top";
+};
+
+// True when every number the messages carry is finite (no NaN may reach a message).
+bool all_finite(const top_sim::Snapshot& s);
+
+uint8_t regime_code(top_sim::Regime r);
+
+void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
+            top_sim::TopState& out);
+
+// world -> plane (rotation alpha about x) and plane -> top (centre of mass, body axes).
+void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+                   geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top);
+
+// Plane, tip sphere, body and stem, spin and velocity arrows.
+void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                visualization_msgs::MarkerArray& out);
+
+// The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`.
+top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error);
+
+// Friction law name -> kind; false for an unknown name.
+bool friction_kind(const std::string& name, top_sim::FrictionLawKind& kind);
+
+}  // namespace top_sim_ros

@@ -1,0 +1,515 @@
+// top_sim_node: a thin ROS adapter over top_sim::Simulator (docs/ros.md, docs/interfaces.md).
+// Single-threaded: the wall timer, subscribers, services and dynamic_reconfigure share one callback queue.
+#include <ros/ros.h>
+
+#include <cmath>
+#include <ctime>
+#include <deque>
+#include <memory>
+#include <set>
+#include <sstream>
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
+#include <nav_msgs/Path.h>
+#include <rosgraph_msgs/Clock.h>
+#include <std_msgs/Float64.h>
+#include <std_srvs/SetBool.h>
+#include <std_srvs/Trigger.h>
+#include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/MarkerArray.h>
+
+#include "conversions.hpp"
+#include "param_yaml.hpp"
+#include "top_sim/TopCommand.h"
+#include "top_sim/TopSimConfig.h"
+#include "top_sim/TopState.h"
+#include "top_sim/scene.hpp"
+#include "top_sim/simulator.hpp"
+#ifdef TOP_SIM_HAVE_LCM
+#include "lcm_publisher.hpp"
+#endif
+
+namespace {
+
+// Parameters of the node itself and of dynamic_reconfigure: everything else under ~ is the scene.
+const std::set<std::string> kNodeKeys = {
+    "publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame", "top_frame",
+    "path_length",  "lcm_url",          "lcm_channel",   "marker_rate", "path_rate",   "path_resolution",
+    "config_dir",   "scene_file",       "alpha",         "spin",        "friction_law", "mu_c",
+    "s_c",          "mu0",              "k",             "s0",          "mu"};
+
+constexpr double kMaxPublishRate = 10000.0;
+
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+double process_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+  return ts.tv_sec + 1e-9 * ts.tv_nsec;
+}
+
+std::string rate_error(const char* name, double v, const char* range) {
+  std::ostringstream os;
+  os << name << " = " << v << ": must be " << range;
+  return os.str();
+}
+
+class TopSimNode {
+ public:
+  TopSimNode() : pnh_("~") {}
+
+  // Reads parameters and the scene; false (after a fatal log) when the scene is bad.
+  bool init() {
+    pnh_.param("publish_rate", publish_rate_, 200.0);
+    pnh_.param("real_time_factor", real_time_factor_, 1.0);
+    pnh_.param("publish_clock", publish_clock_, false);
+    pnh_.param("world_frame", frames_.world, std::string("world"));
+    pnh_.param("plane_frame", frames_.plane, std::string("plane"));
+    pnh_.param("top_frame", frames_.top, std::string("top"));
+    pnh_.param("path_length", path_length_, 2000);
+    pnh_.param("path_resolution", path_resolution_, 2.0e-4);
+    pnh_.param("marker_rate", marker_rate_, 30.0);
+    pnh_.param("path_rate", path_rate_, 10.0);
+    std::string lcm_url, lcm_channel, config_dir, scene_file;
+    pnh_.param("lcm_url", lcm_url, std::string());
+    pnh_.param("lcm_channel", lcm_channel, std::string("TOP_STATE"));
+    pnh_.param("config_dir", config_dir, std::string());
+    pnh_.param("scene_file", scene_file, std::string());
+
+    std::string bad;
+    if (!(std::isfinite(publish_rate_) && publish_rate_ > 0.0 && publish_rate_ <= kMaxPublishRate))
+      bad = rate_error("publish_rate", publish_rate_, "in (0, 10000] Hz");
+    else if (!(std::isfinite(real_time_factor_) && real_time_factor_ >= 0.0))
+      bad = rate_error("real_time_factor", real_time_factor_, ">= 0 and finite (0 = as fast as possible)");
+    else if (path_length_ < 1)
+      bad = rate_error("path_length", path_length_, ">= 1 (poses kept)");
+    else if (!(std::isfinite(marker_rate_) && marker_rate_ > 0.0))
+      bad = rate_error("marker_rate", marker_rate_, "> 0 Hz");
+    else if (!(std::isfinite(path_rate_) && path_rate_ > 0.0))
+      bad = rate_error("path_rate", path_rate_, "> 0 Hz");
+    else if (!(std::isfinite(path_resolution_) && path_resolution_ >= 0.0))
+      bad = rate_error("path_resolution", path_resolution_, ">= 0 m");
+    if (!bad.empty()) {
+      ROS_FATAL("top_sim_node: parameter %s/%s", pnh_.getNamespace().c_str(), bad.c_str());
+      return false;
+    }
+
+    const std::string where = pnh_.getNamespace() + (scene_file.empty() ? "" : " (" + scene_file + ")");
+    try {
+      XmlRpc::XmlRpcValue tree;
+      ros::param::get(pnh_.getNamespace(), tree);
+      const YAML::Node yaml = top_sim_ros::scene_yaml(tree, kNodeKeys, pnh_.getNamespace());
+      scene_ = top_sim::parse_scene(yaml, where, config_dir);
+    } catch (const top_sim::SceneError& e) {
+      ROS_FATAL("top_sim_node: bad scene: %s", e.what());
+      return false;
+    } catch (const std::exception& e) {
+      ROS_FATAL("top_sim_node: bad scene parameters: %s", e.what());
+      return false;
+    }
+    for (const auto& w : scene_.warnings) ROS_WARN("top_sim_node: %s", w.c_str());
+    sim_ = std::make_unique<top_sim::Simulator>(scene_);
+
+    state_pub_ = pnh_.advertise<top_sim::TopState>("top_state", 10);
+    marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
+    path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 2);
+    if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
+    inclination_sub_ = pnh_.subscribe("inclination", 10, &TopSimNode::on_inclination, this);
+    spin_sub_ = pnh_.subscribe("spin", 10, &TopSimNode::on_spin, this);
+    command_sub_ = pnh_.subscribe("command", 10, &TopSimNode::on_command, this);
+    reset_srv_ = pnh_.advertiseService("reset", &TopSimNode::on_reset, this);
+    pause_srv_ = pnh_.advertiseService("pause", &TopSimNode::on_pause, this);
+
+    if (!lcm_url.empty()) {
+#ifdef TOP_SIM_HAVE_LCM
+      lcm_ = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
+      if (!lcm_->ok()) {
+        ROS_ERROR("top_sim_node: lcm_url = '%s': %s; LCM is off, ROS publishing continues", lcm_url.c_str(),
+                  lcm_->error().c_str());
+        lcm_.reset();
+      } else {
+        ROS_INFO("top_sim_node: LCM on '%s', channel %s", lcm_url.c_str(), lcm_channel.c_str());
+      }
+#else
+      ROS_ERROR("top_sim_node: lcm_url = '%s': this build has no LCM support; ROS publishing continues",
+                lcm_url.c_str());
+#endif
+    }
+
+    updater_.setHardwareID("top_sim");
+    updater_.add("simulation", this, &TopSimNode::diagnose);
+
+    // Stamps: simulated time offset by the wall clock at start, so rviz at real_time_factor 1 sees current stamps.
+    stamp_origin_ = ros::Time::now().toSec();
+    if (stamp_origin_ <= 0.0) stamp_origin_ = ros::WallTime::now().toSec();
+    anchor();
+    diag_wall_ = ros::WallTime::now().toSec();
+    diag_cpu_ = process_cpu_seconds();
+
+    reconfigure_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(reconfigure_mutex_, pnh_);
+    config_.alpha = scene_.model.plane.inclination;
+    config_.spin = scene_.initial.spin;
+    config_.real_time_factor = real_time_factor_;
+    config_.publish_rate = publish_rate_;
+    friction_to_config(scene_.model.friction, config_);
+    reconfigure_->updateConfig(config_);
+    reconfigure_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
+
+    timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate_), &TopSimNode::tick, this);
+    ROS_INFO("top_sim_node: %s, alpha %.4g rad, spin %.4g rad/s, %s, publishing at %.4g Hz, real-time factor %.4g",
+             scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
+             top_sim::to_string(scene_.integrator.method), publish_rate_, real_time_factor_);
+    return true;
+  }
+
+ private:
+  // ---- pacing ---------------------------------------------------------------------------------------------
+  void anchor() {
+    anchor_wall_ = ros::WallTime::now().toSec();
+    anchor_sim_ = sim_->time();
+  }
+
+  void tick(const ros::WallTimerEvent&) {
+    const double wall = ros::WallTime::now().toSec();
+    const double cpu0 = thread_cpu_seconds();
+    const std::size_t steps0 = sim_->stats().steps;
+    if (paused_ || sim_->fault() != top_sim::ContactFault::none) {
+      sim_->advance_to(sim_->time());  // applies pending commands without moving time
+    } else if (real_time_factor_ > 0.0) {
+      double target = anchor_sim_ + real_time_factor_ * (wall - anchor_wall_);
+      // Fallen behind by more than half a wall second (CPU starved): drop the debt instead of bursting.
+      if (target - sim_->time() > 0.5 * real_time_factor_) {
+        anchor();
+        target = sim_->time() + real_time_factor_ / publish_rate_;
+        anchor_sim_ = target;
+      }
+      sim_->advance_to(target);
+    } else {
+      // As fast as possible: chunks of simulated time until about half the publish period is spent.
+      const double budget = 0.5 / publish_rate_;
+      do {
+        const double w0 = ros::WallTime::now().toSec();
+        sim_->advance_to(sim_->time() + chunk_);
+        const double took = ros::WallTime::now().toSec() - w0;
+        if (took < 0.1 * budget) chunk_ = std::min(chunk_ * 2.0, 10.0);
+        else if (took > 0.3 * budget) chunk_ = std::max(chunk_ * 0.5, 1e-6);
+      } while (ros::WallTime::now().toSec() - wall < budget && sim_->fault() == top_sim::ContactFault::none);
+    }
+    step_cpu_ += thread_cpu_seconds() - cpu0;
+    steps_ += sim_->stats().steps - steps0;
+    report_fault();
+    update_achieved_factor(wall);
+    publish(wall);
+    updater_.update();
+  }
+
+  void update_achieved_factor(double wall) {
+    history_.emplace_back(wall, sim_->time());
+    while (history_.size() > 2 && wall - history_[1].first >= 1.0) history_.pop_front();
+    const double dw = wall - history_.front().first;
+    achieved_factor_ = dw > 0.0 ? (sim_->time() - history_.front().second) / dw : 0.0;
+  }
+
+  void report_fault() {
+    if (sim_->fault() != top_sim::ContactFault::none && !fault_reported_) {
+      ROS_ERROR("top_sim_node: contact fault, simulation stopped (call ~reset): %s", sim_->fault_message().c_str());
+      fault_reported_ = true;
+    }
+  }
+
+  // ---- output -------------------------------------------------------------------------------------------------
+  void publish(double wall) {
+    const top_sim::Snapshot s = sim_->snapshot();
+    if (!top_sim_ros::all_finite(s)) {
+      ROS_ERROR_THROTTLE(1.0, "top_sim_node: non-finite state at t = %g s: not published (call ~reset)", s.t);
+      return;
+    }
+    const ros::Time stamp(stamp_origin_ + s.t);
+    top_sim::TopState msg;
+    top_sim_ros::to_msg(s, stamp, frames_.plane, msg);
+    msg.real_time_factor = achieved_factor_;
+    msg.requested_real_time_factor = real_time_factor_;
+    msg.paused = paused_;
+    state_pub_.publish(msg);
+
+    // tf only when time moved (a repeated stamp is dropped by listeners as TF_REPEATED_DATA).
+    if (stamp > last_tf_stamp_) {
+      geometry_msgs::TransformStamped wp, pt;
+      top_sim_ros::to_transforms(s, stamp, frames_, wp, pt);
+      tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{wp, pt});
+      last_tf_stamp_ = stamp;
+      if (publish_clock_) {
+        rosgraph_msgs::Clock c;
+        c.clock = stamp;
+        clock_pub_.publish(c);
+      }
+    }
+#ifdef TOP_SIM_HAVE_LCM
+    if (lcm_ && !lcm_->publish(s, achieved_factor_) && !lcm_send_failed_) {
+      ROS_ERROR("top_sim_node: LCM publish on %s failed (reported once)", lcm_->channel().c_str());
+      lcm_send_failed_ = true;
+    }
+#endif
+    update_path(s, stamp);
+    if (wall - last_marker_wall_ >= 1.0 / marker_rate_ && marker_pub_.getNumSubscribers() > 0) {
+      visualization_msgs::MarkerArray markers;
+      top_sim_ros::to_markers(s, sim_->model().top, stamp, frames_, markers);
+      marker_pub_.publish(markers);
+      last_marker_wall_ = wall;
+    }
+    if (wall - last_path_wall_ >= 1.0 / path_rate_ && path_pub_.getNumSubscribers() > 0) {
+      path_.header.stamp = stamp;
+      path_.header.frame_id = frames_.plane;
+      path_pub_.publish(path_);
+      last_path_wall_ = wall;
+    }
+    ++published_;
+  }
+
+  // Contact-point trail: a pose each time the point has moved path_resolution, at most path_length kept.
+  void update_path(const top_sim::Snapshot& s, const ros::Time& stamp) {
+    const Eigen::Vector3d p = s.contact_point;
+    if (!path_.poses.empty()) {
+      const auto& q = path_.poses.back().pose.position;
+      if ((p - Eigen::Vector3d(q.x, q.y, q.z)).norm() < path_resolution_ && path_resolution_ > 0.0) return;
+    }
+    geometry_msgs::PoseStamped ps;
+    ps.header.stamp = stamp;
+    ps.header.frame_id = frames_.plane;
+    ps.pose.position.x = p.x();
+    ps.pose.position.y = p.y();
+    ps.pose.position.z = p.z();
+    ps.pose.orientation.w = 1.0;
+    path_.poses.push_back(ps);
+    if (static_cast<int>(path_.poses.size()) > path_length_)
+      path_.poses.erase(path_.poses.begin(), path_.poses.begin() + (path_.poses.size() - path_length_));
+  }
+
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& st) {
+    const double wall = ros::WallTime::now().toSec();
+    const double cpu = process_cpu_seconds();
+    const double dw = wall - diag_wall_;
+    const top_sim::Snapshot s = sim_->snapshot();
+    const double cpu_share = dw > 0.0 ? (cpu - diag_cpu_) / dw : 0.0;
+    const double cost_per_step = steps_ > 0 ? step_cpu_ / steps_ : 0.0;
+    const double publish_hz = dw > 0.0 ? (published_ - diag_published_) / dw : 0.0;
+    if (sim_->fault() != top_sim::ContactFault::none)
+      st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "contact fault: " + sim_->fault_message());
+    else if (!paused_ && real_time_factor_ > 0.0 &&
+             std::abs(achieved_factor_ - real_time_factor_) > 0.05 * real_time_factor_)
+      st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "real-time factor not reached");
+    else
+      st.summary(diagnostic_msgs::DiagnosticStatus::OK, paused_ ? "paused" : "running");
+    st.add("simulated time [s]", s.t);
+    st.add("requested real-time factor", real_time_factor_);
+    st.add("achieved real-time factor", achieved_factor_);
+    st.add("publish rate requested [Hz]", publish_rate_);
+    st.add("publish rate achieved [Hz]", publish_hz);
+    st.add("integrator steps (window)", steps_);
+    st.add("cost per step [us]", 1e6 * cost_per_step);
+    st.add("node CPU share [fraction of one core]", cpu_share);
+    st.add("energy balance residual", s.energy_balance_residual);
+    st.add("max energy balance residual", sim_->max_energy_residual());
+    st.add("regime", top_sim::to_string(s.regime));
+    st.add("alpha [rad]", s.alpha);
+    st.add("spin [rad/s]", s.spin);
+    st.add("paused", paused_);
+    diag_wall_ = wall;
+    diag_cpu_ = cpu;
+    diag_published_ = published_;
+    steps_ = 0;
+    step_cpu_ = 0.0;
+  }
+
+  // ---- input ---------------------------------------------------------------------------------------------------
+  // Submits to the core, which validates; a rejected command leaves the state untouched.
+  bool submit(const top_sim::Command& c, const char* source) {
+    const std::string error = sim_->submit(c);
+    if (!error.empty()) {
+      ROS_WARN("top_sim_node: %s rejected: %s", source, error.c_str());
+      return false;
+    }
+    // Keep dynamic_reconfigure showing the live values.
+    if (c.inclination) config_.alpha = *c.inclination;
+    if (c.spin) config_.spin = *c.spin;
+    if (c.friction) friction_to_config(*c.friction, config_);
+    if (c.inclination || c.spin || c.friction) reconfigure_->updateConfig(config_);
+    return true;
+  }
+
+  void on_inclination(const std_msgs::Float64::ConstPtr& m) {
+    top_sim::Command c;
+    c.inclination = m->data;
+    submit(c, "inclination");
+  }
+
+  void on_spin(const std_msgs::Float64::ConstPtr& m) {
+    top_sim::Command c;
+    c.spin = m->data;
+    submit(c, "spin");
+  }
+
+  void on_command(const top_sim::TopCommand::ConstPtr& m) {
+    std::string error;
+    const top_sim::Command c = top_sim_ros::to_command(*m, error);
+    if (!error.empty()) {
+      ROS_WARN("top_sim_node: command rejected: %s", error.c_str());
+      return;
+    }
+    submit(c, "command");
+  }
+
+  bool on_reset(std_srvs::Trigger::Request&, std_srvs::Trigger::Response& res) {
+    const double t = sim_->time();
+    sim_->reset();
+    path_.poses.clear();
+    fault_reported_ = false;
+    anchor();
+    config_.alpha = scene_.model.plane.inclination;
+    config_.spin = scene_.initial.spin;
+    friction_to_config(scene_.model.friction, config_);
+    reconfigure_->updateConfig(config_);
+    res.success = true;
+    std::ostringstream os;
+    os << "reset to the scene's initial state at t = " << t << " s (time keeps running forward)";
+    res.message = os.str();
+    ROS_INFO("top_sim_node: %s", res.message.c_str());
+    return true;
+  }
+
+  bool on_pause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
+    if (paused_ != static_cast<bool>(req.data)) {
+      paused_ = req.data;
+      anchor();
+      history_.clear();
+    }
+    res.success = true;
+    res.message = paused_ ? "paused" : "running";
+    return true;
+  }
+
+  static void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& cfg) {
+    cfg.friction_law = top_sim::to_string(law.kind);
+    cfg.mu_c = law.mu_c;
+    cfg.s_c = law.s_c;
+    cfg.mu0 = law.mu0;
+    cfg.k = law.k;
+    cfg.s0 = law.s0;
+    cfg.mu = law.mu;
+  }
+
+  void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level) {
+    if (!reconfigure_ready_) {  // the first call only echoes the values set in init()
+      reconfigure_ready_ = true;
+      cfg = config_;
+      return;
+    }
+    top_sim::Command c;
+    if ((level & 1) && cfg.alpha != config_.alpha) c.inclination = cfg.alpha;
+    if ((level & 2) && cfg.spin != config_.spin) c.spin = cfg.spin;
+    if (level & 16) {
+      top_sim::FrictionLaw law = sim_->model().friction;
+      top_sim::FrictionLawKind kind;
+      if (!top_sim_ros::friction_kind(cfg.friction_law, kind)) {
+        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be paper, linearized, coulomb or table",
+                 cfg.friction_law.c_str());
+        cfg = config_;
+        return;
+      }
+      if (kind == top_sim::FrictionLawKind::table && law.kind != kind) {
+        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene "
+                 "or a TopCommand; kept the %s law", top_sim::to_string(law.kind));
+        cfg = config_;
+        return;
+      }
+      law.kind = kind;
+      law.mu_c = cfg.mu_c;
+      law.s_c = cfg.s_c;
+      law.mu0 = cfg.mu0;
+      law.k = cfg.k;
+      law.s0 = cfg.s0;
+      law.mu = cfg.mu;
+      c.friction = law;
+    }
+    if (!c.empty()) {
+      if (!submit(c, "dynamic_reconfigure")) {
+        const double rtf = cfg.real_time_factor, rate = cfg.publish_rate;
+        cfg = config_;  // show the values in force
+        cfg.real_time_factor = rtf;
+        cfg.publish_rate = rate;
+      }
+    }
+    if (level & 4) {
+      if (std::isfinite(cfg.real_time_factor) && cfg.real_time_factor >= 0.0) {
+        real_time_factor_ = cfg.real_time_factor;
+        anchor();
+        history_.clear();
+      } else {
+        ROS_WARN("top_sim_node: %s", rate_error("real_time_factor", cfg.real_time_factor, ">= 0").c_str());
+      }
+      cfg.real_time_factor = real_time_factor_;
+    }
+    if (level & 8) {
+      if (std::isfinite(cfg.publish_rate) && cfg.publish_rate > 0.0 && cfg.publish_rate <= kMaxPublishRate) {
+        publish_rate_ = cfg.publish_rate;
+        timer_.setPeriod(ros::WallDuration(1.0 / publish_rate_));
+      } else {
+        ROS_WARN("top_sim_node: %s", rate_error("publish_rate", cfg.publish_rate, "in (0, 10000] Hz").c_str());
+      }
+      cfg.publish_rate = publish_rate_;
+    }
+    config_.real_time_factor = real_time_factor_;
+    config_.publish_rate = publish_rate_;
+    cfg.alpha = config_.alpha;  // applied or reverted above; either way config_ holds the value in force
+    cfg.spin = config_.spin;
+  }
+
+  ros::NodeHandle nh_, pnh_;
+  top_sim::Scene scene_;
+  std::unique_ptr<top_sim::Simulator> sim_;
+  top_sim_ros::Frames frames_;
+  double publish_rate_ = 200.0, real_time_factor_ = 1.0, marker_rate_ = 30.0, path_rate_ = 10.0;
+  double path_resolution_ = 2.0e-4;
+  bool publish_clock_ = false;
+  int path_length_ = 2000;
+
+  ros::Publisher state_pub_, marker_pub_, path_pub_, clock_pub_;
+  ros::Subscriber inclination_sub_, spin_sub_, command_sub_;
+  ros::ServiceServer reset_srv_, pause_srv_;
+  ros::WallTimer timer_;
+  tf2_ros::TransformBroadcaster tf_;
+  diagnostic_updater::Updater updater_;
+  boost::recursive_mutex reconfigure_mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<top_sim::TopSimConfig>> reconfigure_;
+  top_sim::TopSimConfig config_;
+  bool reconfigure_ready_ = false;
+#ifdef TOP_SIM_HAVE_LCM
+  std::unique_ptr<top_sim_lcm::Publisher> lcm_;
+  bool lcm_send_failed_ = false;
+#endif
+
+  double stamp_origin_ = 0.0, anchor_wall_ = 0.0, anchor_sim_ = 0.0, chunk_ = 1e-3;
+  bool paused_ = false, fault_reported_ = false;
+  std::deque<std::pair<double, double>> history_;  // (wall, sim) over the last second
+  double achieved_factor_ = 0.0;
+  ros::Time last_tf_stamp_;
+  nav_msgs::Path path_;
+  double last_marker_wall_ = 0.0, last_path_wall_ = 0.0;
+  double diag_wall_ = 0.0, diag_cpu_ = 0.0, step_cpu_ = 0.0;
+  std::size_t steps_ = 0, published_ = 0, diag_published_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "top_sim_node");
+  TopSimNode node;
+  if (!node.init()) return 2;
+  ros::spin();
+  return 0;
+}
