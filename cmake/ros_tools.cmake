@@ -1,0 +1,18 @@
+# ROS tools around the node: keyboard teleop, rviz config, screenshot and benchmark scripts.
+# Included (optionally) at the end of cmake/ros.cmake, which finds catkin with roscpp, std_msgs, std_srvs
+# and generates top_sim's messages; without those this file adds nothing.
+if(NOT (roscpp_FOUND AND std_msgs_FOUND AND std_srvs_FOUND))
+  message(STATUS "top_sim: roscpp/std_msgs/std_srvs not found by catkin; top_sim_teleop not built")
+  return()
+endif()
+
+add_executable(top_sim_teleop src/ros/top_sim_teleop.cpp)
+# Generated message headers live in the devel space.
+target_include_directories(top_sim_teleop PRIVATE ${CATKIN_DEVEL_PREFIX}/include ${catkin_INCLUDE_DIRS})
+target_link_libraries(top_sim_teleop ${catkin_LIBRARIES})
+add_dependencies(top_sim_teleop ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
+
+install(TARGETS top_sim_teleop RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# rviz/ is installed by ros.cmake; the benchmark and screenshot helpers run from the source tree or installed.
+catkin_install_python(PROGRAMS scripts/bench_node.py scripts/grab_window.py scripts/rviz_layout.py
+  DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

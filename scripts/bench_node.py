@@ -1,0 +1,344 @@
+#!/usr/bin/env python3
+"""Benchmarks top_sim_node streaming at a high publish rate (default 1 kHz, real-time factor 1).
+
+Per run it launches launch/top_sim.launch (no rviz) against a private master, lets it settle, then over the
+measurement window records every TopState it receives and reports:
+  - cpu_percent: the node process's user+system CPU time (/proc/<pid>/stat) over the window, % of one core;
+  - inter-arrival p50/p99 of receive times, and the arrival jitter: receive time minus the ideal schedule
+    given by the header stamps (a straight line fitted through (stamp, receive time)), |residual| p50/p99;
+  - command-to-effect latency: an inclination is published about once a second (alternating two values);
+    the latency is the wall time until the first TopState whose alpha equals the new value;
+  - achieved real-time factor: simulated time advanced / wall time, from the first and last TopState;
+  - received / expected message count.
+Numbers are medians over the runs. Targets are reported, never asserted (exit status 0 whatever they are).
+
+  scripts/bench_node.py [--runs 3] [--duration 30] [--rate 1000] [--rtf 1] [--markdown docs/node_benchmark.md]
+
+Needs a built workspace (scripts/build.sh): sources $TOP_SIM_WS/devel/setup.bash if top_sim is not found.
+"""
+import argparse
+import json
+import math
+import os
+import platform
+import signal
+import socket
+import statistics
+import subprocess
+import sys
+import threading
+import time
+import xmlrpc.client
+
+REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+CLK_TCK = os.sysconf('SC_CLK_TCK')
+
+
+def ros_environment():
+    """The environment with top_sim's devel space sourced (unless top_sim is already on the package path)."""
+    env = dict(os.environ)
+    env['PATH'] = '/usr/bin:' + env.get('PATH', '')
+    env.setdefault('ROS_HOSTNAME', 'localhost')
+    if subprocess.run(['rospack', 'find', 'top_sim'], env=env, capture_output=True).returncode == 0:
+        return env
+    ws = os.environ.get('TOP_SIM_WS', os.path.join(REPO, '.catkin_ws'))
+    setup = os.path.join(ws, 'devel', 'setup.bash')
+    if not os.path.isfile(setup):
+        sys.exit(f'bench_node: top_sim is not on the ROS package path and {setup} does not exist: build first')
+    out = subprocess.run(['bash', '-c', f'source "{setup}" && env -0'], env=env, capture_output=True, check=True).stdout
+    return dict(kv.split('=', 1) for kv in out.decode().split('\0') if '=' in kv)
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(('localhost', 0))
+        return s.getsockname()[1]
+
+
+def cpu_ticks(pid):
+    """utime + stime of a process (all its threads), in clock ticks."""
+    with open(f'/proc/{pid}/stat') as f:
+        fields = f.read().rsplit(')', 1)[1].split()
+    return int(fields[11]) + int(fields[12])   # fields 14 and 15 of proc(5), counted after the comm field
+
+
+def percentile(values, p):
+    """Linear-interpolated percentile p in [0, 100] of a non-empty list."""
+    v = sorted(values)
+    k = (len(v) - 1) * p / 100.0
+    lo, hi = math.floor(k), math.ceil(k)
+    return v[lo] + (v[hi] - v[lo]) * (k - lo)
+
+
+def line_fit(x, y):
+    """Least-squares y = a + b x."""
+    mx, my = statistics.fmean(x), statistics.fmean(y)
+    sxx = sum((xi - mx) ** 2 for xi in x)
+    b = sum((xi - mx) * (yi - my) for xi, yi in zip(x, y)) / sxx
+    return my - b * mx, b
+
+
+class Recorder:
+    """TopState subscriber: receive time, header stamp, simulated time, alpha and reported factor of each message."""
+
+    def __init__(self, rospy, TopState, topic):
+        self.lock = threading.Lock()
+        self.rows = []
+        self.recording = False
+        self.pending = None       # (target alpha, send time) of the inclination command in flight
+        self.latencies = []
+        self.sub = rospy.Subscriber(topic, TopState, self.callback, queue_size=10000, tcp_nodelay=True)
+
+    def callback(self, msg):
+        now = time.perf_counter()
+        with self.lock:
+            if not self.recording:
+                return
+            self.rows.append((now, msg.header.stamp.to_sec(), msg.sim_time, msg.alpha, msg.real_time_factor))
+            if self.pending is not None and abs(msg.alpha - self.pending[0]) < 1e-12:
+                self.latencies.append(now - self.pending[1])
+                self.pending = None
+
+
+def node_pid(master_uri, node):
+    master = xmlrpc.client.ServerProxy(master_uri)
+    code, _, uri = master.lookupNode('/top_sim_bench', node)
+    if code != 1:
+        return None
+    code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/top_sim_bench')
+    return pid if code == 1 else None
+
+
+def one_run(args, env, rospy, Float64, recorder, index):
+    log_path = os.path.join(args.log_dir, f'run{index}_roslaunch.log')
+    log = open(log_path, 'w')
+    launch = subprocess.Popen(
+        ['roslaunch', 'top_sim', 'top_sim.launch', f'scene:={args.scene}', 'rviz:=false',
+         f'publish_rate:={args.rate}', f'real_time_factor:={args.rtf}'],
+        env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    try:
+        node = args.node
+        pid = None
+        deadline = time.time() + 60
+        while pid is None and time.time() < deadline and launch.poll() is None:
+            time.sleep(0.2)
+            try:
+                pid = node_pid(env['ROS_MASTER_URI'], node)
+            except (OSError, xmlrpc.client.Error):
+                pid = None
+        if pid is None:
+            raise RuntimeError(f'{node} did not come up within 60 s (see {log_path})')
+        time.sleep(args.warmup)   # connection set-up and the first second of achieved-factor averaging
+
+        pub = rospy.Publisher(f'{node}/inclination', Float64, queue_size=10)
+        time.sleep(0.5)           # let the node connect to this publisher before the first command
+        with recorder.lock:
+            recorder.rows, recorder.latencies, recorder.pending = [], [], None
+            recorder.recording = True
+        ticks0, wall0 = cpu_ticks(pid), time.perf_counter()
+
+        alphas = (args.alpha, args.alpha + args.alpha_step)
+        commands = 0
+        next_command = wall0 + 1.0
+        end = wall0 + args.duration
+        while time.perf_counter() < end:
+            now = time.perf_counter()
+            if now >= next_command:
+                target = alphas[(commands + 1) % 2]
+                with recorder.lock:
+                    recorder.pending = (target, time.perf_counter())
+                pub.publish(Float64(target))
+                commands += 1
+                next_command = now + 1.0
+            time.sleep(0.01)
+
+        ticks1, wall1 = cpu_ticks(pid), time.perf_counter()
+        with recorder.lock:
+            recorder.recording = False
+            rows, latencies = list(recorder.rows), list(recorder.latencies)
+        pub.unregister()
+    finally:
+        os.killpg(launch.pid, signal.SIGINT)
+        try:
+            launch.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            os.killpg(launch.pid, signal.SIGKILL)
+            launch.wait()
+        log.close()
+
+    if len(rows) < 10:
+        raise RuntimeError(f'only {len(rows)} TopState messages received (see {log_path})')
+    recv = [r[0] for r in rows]
+    stamp = [r[1] for r in rows]
+    sim = [r[2] for r in rows]
+    gaps = [b - a for a, b in zip(recv, recv[1:])]
+    a, b = line_fit(stamp, recv)
+    jitter = [abs(r - (a + b * s)) for r, s in zip(recv, stamp)]
+    period = 1.0 / args.rate
+    return {
+        'run': index,
+        'wall_s': wall1 - wall0,
+        'cpu_percent': 100.0 * (ticks1 - ticks0) / CLK_TCK / (wall1 - wall0),
+        'received': len(rows),
+        'expected': round((wall1 - wall0) * args.rate),
+        'interarrival_p50_ms': 1e3 * percentile(gaps, 50),
+        'interarrival_p99_ms': 1e3 * percentile(gaps, 99),
+        'interarrival_max_ms': 1e3 * max(gaps),
+        'jitter_p50_ms': 1e3 * percentile(jitter, 50),
+        'jitter_p99_ms': 1e3 * percentile(jitter, 99),
+        'stamp_step_p50_ms': 1e3 * percentile([y - x for x, y in zip(stamp, stamp[1:])], 50),
+        'commands': commands,
+        'latency_samples': len(latencies),
+        'latency_p50_ms': 1e3 * percentile(latencies, 50) if latencies else None,
+        'latency_max_ms': 1e3 * max(latencies) if latencies else None,
+        'latency_within_period_percent': (100.0 * sum(l <= period for l in latencies) / len(latencies)
+                                          if latencies else None),
+        'achieved_rtf': (sim[-1] - sim[0]) / (recv[-1] - recv[0]),
+        'reported_rtf_median': statistics.median(r[4] for r in rows),
+        'loadavg_after': open('/proc/loadavg').read().split()[0],
+    }
+
+
+SUMMARY_KEYS = ['cpu_percent', 'interarrival_p50_ms', 'interarrival_p99_ms', 'jitter_p50_ms', 'jitter_p99_ms',
+                'latency_p50_ms', 'latency_max_ms', 'latency_within_period_percent', 'achieved_rtf',
+                'reported_rtf_median', 'received', 'expected']
+
+
+def median_of(results, key):
+    values = [r[key] for r in results if r[key] is not None]
+    return statistics.median(values) if values else None
+
+
+def fmt(v, digits=3):
+    if v is None:
+        return 'n/a'
+    if isinstance(v, float):
+        return f'{v:.{digits}g}' if abs(v) < 1e4 else f'{v:.0f}'
+    return str(v)
+
+
+def markdown(args, results, summary, command):
+    period_ms = 1e3 / args.rate
+    cpu = open('/proc/cpuinfo').read()
+    model = next((l.split(':', 1)[1].strip() for l in cpu.splitlines() if l.startswith('model name')), 'unknown')
+    verdict = lambda ok: 'met' if ok else 'NOT met'
+    rtf_err = abs(summary['achieved_rtf'] / args.rtf - 1.0) if args.rtf > 0 else None
+    lat = summary['latency_p50_ms']
+    lines = [
+        '# top_sim_node benchmark',
+        '',
+        f'Generated by `{command}` (scene `{os.path.relpath(args.scene, REPO)}`, '
+        f'publish_rate {args.rate:g} Hz, real_time_factor {args.rtf:g}, {args.runs} runs of {args.duration:g} s '
+        f'after {args.warmup:g} s warm-up; no rviz).',
+        f'Machine: {model}, {os.cpu_count()} cores, {platform.platform()}; the benchmark subscriber is rospy in the '
+        'same machine, so its own scheduling adds to the measured jitter and latency.',
+        '',
+        'Medians over the runs. Targets are reported, not asserted.',
+        '',
+        '| quantity | median | target |',
+        '|---|---|---|',
+        f'| node CPU, % of one core | {fmt(summary["cpu_percent"])} | < 10 %: {verdict(summary["cpu_percent"] < 10)} |',
+        f'| TopState inter-arrival p50 / p99 [ms] | {fmt(summary["interarrival_p50_ms"])} / '
+        f'{fmt(summary["interarrival_p99_ms"])} | period {period_ms:g} ms |',
+        f'| arrival jitter vs stamp schedule, p50 / p99 [ms] | {fmt(summary["jitter_p50_ms"])} / '
+        f'{fmt(summary["jitter_p99_ms"])} | |',
+        f'| inclination command-to-effect latency, p50 / max [ms] | {fmt(lat)} / {fmt(summary["latency_max_ms"])} '
+        f'| <= {period_ms:g} ms (one period): '
+        f'{verdict(lat is not None and lat <= period_ms)} for the median; '
+        f'{fmt(summary["latency_within_period_percent"])} % of commands within |',
+        f'| achieved real-time factor (sim time / wall time) | {fmt(summary["achieved_rtf"], 6)} | within 1 % of '
+        f'{args.rtf:g}: {verdict(rtf_err is not None and rtf_err <= 0.01)} |',
+        f'| real-time factor reported in TopState (median) | {fmt(summary["reported_rtf_median"], 6)} | |',
+        f'| messages received / expected | {fmt(summary["received"])} / {fmt(summary["expected"])} | |',
+        '',
+        'Definitions: CPU from `/proc/<pid>/stat` utime+stime of the node over the window; inter-arrival from '
+        'subscriber receive times; jitter = |receive time - (a + b * header stamp)| with a, b fitted by least '
+        'squares, so it measures the spread of delivery around the published schedule; latency = wall time from '
+        'publishing `inclination` to the first received TopState carrying the new alpha (so it includes both '
+        'transports); achieved factor = simulated time advanced / receive-time span.',
+        '',
+        '## Runs',
+        '',
+        '| run | CPU % | inter-arrival p50/p99 ms | jitter p50/p99 ms | latency p50/max ms (n) | achieved RTF | '
+        'received/expected | load avg |',
+        '|---|---|---|---|---|---|---|---|',
+    ]
+    for r in results:
+        lines.append(
+            f'| {r["run"]} | {fmt(r["cpu_percent"])} | {fmt(r["interarrival_p50_ms"])} / '
+            f'{fmt(r["interarrival_p99_ms"])} | {fmt(r["jitter_p50_ms"])} / {fmt(r["jitter_p99_ms"])} | '
+            f'{fmt(r["latency_p50_ms"])} / {fmt(r["latency_max_ms"])} ({r["latency_samples"]}) | '
+            f'{fmt(r["achieved_rtf"], 6)} | {r["received"]}/{r["expected"]} | {r["loadavg_after"]} |')
+    return '\n'.join(lines) + '\n'
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument('--runs', type=int, default=3)
+    ap.add_argument('--duration', type=float, default=30.0, help='measurement window per run [s]')
+    ap.add_argument('--warmup', type=float, default=3.0, help='wait after the node is up [s]')
+    ap.add_argument('--rate', type=float, default=1000.0, help='publish_rate [Hz]')
+    ap.add_argument('--rtf', type=float, default=1.0, help='real_time_factor (> 0)')
+    ap.add_argument('--scene', default=os.path.join(REPO, 'config', 'scenes', 'default.yaml'))
+    ap.add_argument('--node', default='/top_sim_node', help='node name as launched by top_sim.launch')
+    ap.add_argument('--alpha', type=float, default=0.10, help='the two inclinations commanded alternately [rad]')
+    ap.add_argument('--alpha-step', type=float, default=0.01)
+    ap.add_argument('--markdown', help='write the report here (e.g. docs/node_benchmark.md)')
+    ap.add_argument('--json', help='write every run and the medians as JSON here')
+    ap.add_argument('--log-dir', default=None)
+    args = ap.parse_args()
+    for name, value, ok, allowed in [('--runs', args.runs, args.runs >= 1, '>= 1'),
+                                     ('--duration', args.duration, args.duration >= 3, '>= 3 s'),
+                                     ('--rate', args.rate, args.rate > 0, '> 0 Hz'),
+                                     ('--rtf', args.rtf, args.rtf > 0, '> 0 (0 = unpaced is not benchmarked)')]:
+        if not ok:
+            ap.error(f'{name} = {value}: must be {allowed}')
+    args.scene = os.path.abspath(args.scene)
+    args.log_dir = args.log_dir or f'/tmp/top_sim_bench_node.{os.getpid()}'
+    os.makedirs(args.log_dir, exist_ok=True)
+
+    env = ros_environment()
+    port = free_port()
+    env['ROS_MASTER_URI'] = f'http://localhost:{port}'
+    os.environ.update(env)
+    sys.path[:0] = [p for p in env.get('PYTHONPATH', '').split(':') if p]
+    master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
+                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    results = []
+    try:
+        import rospy
+        from std_msgs.msg import Float64
+        from top_sim.msg import TopState
+        deadline = time.time() + 30
+        while True:
+            try:
+                xmlrpc.client.ServerProxy(env['ROS_MASTER_URI']).getSystemState('/top_sim_bench')
+                break
+            except OSError:
+                if time.time() > deadline:
+                    sys.exit('bench_node: rosmaster did not start')
+                time.sleep(0.2)
+        rospy.init_node('top_sim_bench', disable_signals=True)
+        recorder = Recorder(rospy, TopState, f'{args.node}/top_state')
+        for i in range(1, args.runs + 1):
+            r = one_run(args, env, rospy, Float64, recorder, i)
+            print(json.dumps(r), flush=True)
+            results.append(r)
+    finally:
+        os.killpg(master.pid, signal.SIGINT)
+        master.wait(timeout=20)
+
+    summary = {k: median_of(results, k) for k in SUMMARY_KEYS}
+    print(json.dumps({'median': summary}, indent=1))
+    command = 'scripts/bench_node.py ' + ' '.join(sys.argv[1:])
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump({'command': command, 'runs': results, 'median': summary}, f, indent=1)
+    if args.markdown:
+        with open(args.markdown, 'w') as f:
+            f.write(markdown(args, results, summary, command))
+        print(f'bench_node: wrote {args.markdown}')
+
+
+if __name__ == '__main__':
+    main()

@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# Renders docs/img/rviz.png: the node and rviz under Xvfb (Mesa software GL), a few seconds of the scene, one
+# screenshot of the rviz window, then a clean shutdown. No display or roscore needed.
+#   scripts/rviz_screenshot.sh [OUT.png]
+# Environment: TOP_SIM_SCENE (default config/scenes/default.yaml), TOP_SIM_SHOT_RTF (real-time factor, default 2),
+# TOP_SIM_SHOT_WAIT (wall seconds of streaming before the shot, default 8), TOP_SIM_SHOT_SIZE (default 1280x800).
+# Needs the Debian packages xvfb, x11-utils (xwininfo) and python3-pil.
+set -euo pipefail
+source "$(dirname "$0")/lib.sh"
+
+OUT=$(realpath -m "${1:-$TOP_SIM_REPO/docs/img/rviz.png}")
+SCENE=$(realpath -m "${TOP_SIM_SCENE:-$TOP_SIM_REPO/config/scenes/default.yaml}")
+RTF=${TOP_SIM_SHOT_RTF:-2}
+WAIT=${TOP_SIM_SHOT_WAIT:-8}
+SIZE=${TOP_SIM_SHOT_SIZE:-1280x800}
+
+for tool in xvfb-run xwininfo; do
+  command -v "$tool" >/dev/null 2>&1 || top_sim_die "$tool not found (Debian packages: xvfb, x11-utils)"
+done
+/usr/bin/python3 -c 'from PIL import ImageGrab' 2>/dev/null || top_sim_die "python3 PIL not found (Debian package: python3-pil)"
+[ -f "$SCENE" ] || top_sim_die "scene file $SCENE does not exist"
+
+# Use the workspace's devel space unless top_sim is already on the ROS package path.
+if ! rospack find top_sim >/dev/null 2>&1; then
+  [ -f "$TOP_SIM_WS/devel/setup.bash" ] || top_sim_die "no $TOP_SIM_WS/devel/setup.bash: build first (scripts/build.sh)"
+  set +u; source "$TOP_SIM_WS/devel/setup.bash"; set -u
+fi
+
+# A private master on a free port, so a running roscore or another session is left alone.
+PORT=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_MASTER_URI=http://localhost:$PORT
+LOG=$(mktemp -d /tmp/top_sim_shot.XXXXXX)
+top_sim_log "rviz screenshot: scene $SCENE, real_time_factor $RTF, ${WAIT} s; logs in $LOG"
+
+export OUT SCENE RTF WAIT PORT LOG TOP_SIM_REPO
+# Software GL: Xvfb has no GPU; rviz's OGRE renders through Mesa llvmpipe.
+export LIBGL_ALWAYS_SOFTWARE=1
+xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
+  set -m   # job control: the background roslaunch receives SIGINT like from a terminal
+  roslaunch -p "$PORT" top_sim top_sim.launch scene:="$SCENE" rviz:=true real_time_factor:="$RTF" \
+    >"$LOG/roslaunch.log" 2>&1 &
+  launch=$!
+  status=0
+  # Streaming has started once one TopState arrives.
+  if timeout 60 rostopic echo -n 1 /top_sim_node/top_state/sim_time >"$LOG/first_state.txt" 2>&1; then
+    sleep "$WAIT"
+    /usr/bin/python3 "$TOP_SIM_REPO/scripts/grab_window.py" --title RViz --out "$OUT" --timeout 30 || status=$?
+    rostopic echo -n 1 /top_sim_node/top_state/sim_time >"$LOG/last_state.txt" 2>&1 || true
+  else
+    echo "no TopState on /top_sim_node/top_state within 60 s (see $LOG/roslaunch.log)" >&2
+    status=1
+  fi
+  kill -INT "$launch" 2>/dev/null || true
+  for _ in $(seq 50); do kill -0 "$launch" 2>/dev/null || break; sleep 0.2; done
+  kill -TERM "$launch" 2>/dev/null || true
+  wait "$launch" 2>/dev/null || true
+  exit $status
+'
+top_sim_log "simulated time at the shot: $(head -1 "$LOG/last_state.txt" 2>/dev/null || echo unknown) s"
+top_sim_log "wrote $OUT"
