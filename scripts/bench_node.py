@@ -280,7 +280,7 @@ def main():
     ap.add_argument('--rate', type=float, default=1000.0, help='publish_rate [Hz]')
     ap.add_argument('--rtf', type=float, default=1.0, help='real_time_factor (> 0)')
     ap.add_argument('--scene', default=os.path.join(REPO, 'config', 'scenes', 'default.yaml'))
-    ap.add_argument('--node', default='/top_sim_node', help='node name as launched by top_sim.launch')
+    ap.add_argument('--node', default='/top_sim', help='node name as launched by top_sim.launch')
     ap.add_argument('--alpha', type=float, default=0.10, help='the two inclinations commanded alternately [rad]')
     ap.add_argument('--alpha-step', type=float, default=0.01)
     ap.add_argument('--markdown', help='write the report here (e.g. docs/node_benchmark.md)')

@@ -41,13 +41,21 @@ xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
     >"$LOG/roslaunch.log" 2>&1 &
   launch=$!
   status=0
-  # Streaming has started once one TopState arrives.
-  if timeout 60 rostopic echo -n 1 /top_sim_node/top_state/sim_time >"$LOG/first_state.txt" 2>&1; then
+  # Streaming has started once one TopState arrives (rostopic fails at once while the master is not up yet).
+  streaming=false
+  for _ in $(seq 30); do
+    if timeout 10 rostopic echo -n 1 /top_sim/top_state/sim_time >"$LOG/first_state.txt" 2>&1; then
+      streaming=true; break
+    fi
+    kill -0 "$launch" 2>/dev/null || break
+    sleep 1
+  done
+  if $streaming; then
     sleep "$WAIT"
     /usr/bin/python3 "$TOP_SIM_REPO/scripts/grab_window.py" --title RViz --out "$OUT" --timeout 30 || status=$?
-    rostopic echo -n 1 /top_sim_node/top_state/sim_time >"$LOG/last_state.txt" 2>&1 || true
+    rostopic echo -n 1 /top_sim/top_state/sim_time >"$LOG/last_state.txt" 2>&1 || true
   else
-    echo "no TopState on /top_sim_node/top_state within 60 s (see $LOG/roslaunch.log)" >&2
+    echo "no TopState on /top_sim/top_state within 60 s (see $LOG/roslaunch.log)" >&2
     status=1
   fi
   kill -INT "$launch" 2>/dev/null || true

@@ -108,7 +108,7 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "top_sim_teleop");
   ros::NodeHandle pnh("~");
 
-  std::string sim_node = pnh.param<std::string>("sim_node", "top_sim_node");
+  std::string sim_node = pnh.param<std::string>("sim_node", "top_sim");
   const double alpha_step = pnh.param("alpha_step", 0.01);
   const double spin_step = pnh.param("spin_step", 10.0);
   // Just inside the node's |alpha| < pi/2 bound; the node validates again.
