@@ -71,7 +71,14 @@ Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
   if (settings.start == SweepStart::launched) {
     // Start inside the sleeping state's basin: slip near s*, not s = 1 (which runs away close to alpha_c).
     const StationaryState st = stationary_state(scene.model, p.spin);
-    if (st.exists) scene.initial.velocity = st.velocity;
+    if (st.exists) {
+      // The initial keys are world-frame: f_hat* from the plane frame P to W (R_WP = Rot_x(alpha)).
+      const double ca = std::cos(p.alpha), sa = std::sin(p.alpha);
+      const Eigen::Vector3d f_w(st.f_hat.x(), ca * st.f_hat.y() - sa * st.f_hat.z(), sa * st.f_hat.y() + ca * st.f_hat.z());
+      scene.initial.tilt = std::acos(std::clamp(f_w.z(), -1.0, 1.0)) + settings.launch_perturbation;
+      scene.initial.tilt_azimuth = std::atan2(f_w.y(), f_w.x());
+      scene.initial.velocity = st.velocity;
+    }
   }
   return scene;
 }

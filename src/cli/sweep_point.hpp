@@ -13,7 +13,7 @@ namespace top_sim {
 
 enum class SweepStart {
   tilted,    // the standard start: figure axis tilted, contact point at rest (slip s = 1 at t = 0)
-  launched,  // the same, but the contact point pushed at the analytic sleeping velocity (s near s*)
+  launched,  // the sleeping state's velocity, its tilt + launch_perturbation: starts near s*, not s = 1
 };
 
 // What to simulate at one grid point; unset optionals keep the values of the named files.
@@ -30,7 +30,8 @@ struct SweepPoint {
 struct SweepSettings {
   std::string config_dir;          // "" = default_config_dir()
   SweepStart start = SweepStart::tilted;
-  double tilt = 0.1;               // initial tilt from the world vertical [rad]
+  double tilt = 0.1;               // initial tilt from the world vertical [rad] (tilted start)
+  double launch_perturbation = 0.01;  // extra tilt beyond the sleeping one [rad] (launched start)
   double max_path = 40.0;          // give up after this sleeping-path length [m] (relaxation is a path length)
   double min_duration = 30.0;      // never give up before this [s]
   double max_duration = 20000.0;   // never simulate longer than this [s]

@@ -35,9 +35,11 @@ const char* kUsage =
     "  --mu-c LIST         override the paper law's mu_c, > 0\n"
     "  --s-c LIST          override the paper law's s_c, in (0, 1]\n"
     "  Each point:\n"
-    "  --start MODE        tilted (default: at rest, tilted) | launched (tilted, contact point pushed at the\n"
-    "                      analytic sleeping velocity, so the start is not the s = 1 runaway basin)\n"
-    "  --tilt RAD          initial tilt from the vertical, in [0, 1) (default 0.1)\n"
+    "  --start MODE        tilted (default: at rest, figure axis tilted by --tilt) | launched (the analytic\n"
+    "                      sleeping state perturbed by --perturbation of extra tilt: slip starts near s*,\n"
+    "                      not at the s = 1 of a top at rest, which runs away close to alpha_c)\n"
+    "  --tilt RAD          initial tilt from the vertical (tilted start), in [0, 1) (default 0.1)\n"
+    "  --perturbation RAD  extra tilt of the launched start, in [0, 0.5] (default 0.01)\n"
     "  --max-path M        give up after this sleeping-path length [m], > 0 (default 40)\n"
     "  --max-duration S    and never after more than S simulated seconds, > 0 (default 20000)\n"
     "  --slide-duration S  sliding must persist this long to count; run length above alpha_c (default 30)\n"
@@ -147,6 +149,8 @@ int main(int argc, char** argv) {
         else throw BadArgument{a + " = '" + s + "': must be tilted | launched"};
       } else if (a == "--tilt") {
         settings.tilt = checked(a, value(), [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
+      } else if (a == "--perturbation") {
+        settings.launch_perturbation = checked(a, value(), [](double v) { return v >= 0.0 && v <= 0.5; }, "in [0, 0.5] [rad]");
       } else if (a == "--max-path") {
         settings.max_path = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [m]");
       } else if (a == "--max-duration") {
