@@ -1,0 +1,50 @@
+"""Shared helpers of the figure scripts: CSV loading, the Agg backend, the paper law's branches."""
+import csv
+import math
+
+import matplotlib
+
+matplotlib.use("Agg")  # files only, no display
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+plt.rcParams.update({"figure.dpi": 110, "savefig.dpi": 110, "font.size": 9, "axes.grid": True, "grid.alpha": 0.3})
+
+# Alternate colours per simulated second, as in the paper's Fig. 5 caption (red, then green).
+SECOND_COLOURS = ("tab:red", "tab:green")
+
+
+def load(path):
+    """Columns of a CSV file: numeric columns as float arrays, the others as lists of text."""
+    with open(path, newline="") as f:
+        rows = list(csv.DictReader(f))
+    if not rows:
+        raise SystemExit(f"{path}: no rows")
+    cols = {}
+    for name in rows[0]:
+        values = [r[name] for r in rows]
+        try:
+            cols[name] = np.array([float(v) for v in values])
+        except ValueError:
+            cols[name] = values
+    return cols
+
+
+def paper_branches(tan_alpha, mu_c, s_c):
+    """physics.md section 5: the roots s = s_c (1 -+ sqrt(1 - tan(alpha)/mu_c)) of the paper law (stable, unstable)."""
+    root = np.sqrt(np.clip(1.0 - np.asarray(tan_alpha) / mu_c, 0.0, None))
+    return s_c * (1.0 - root), s_c * (1.0 + root)
+
+
+def paper_phi_star(alpha, mu_c, s_c):
+    return 2.0 * math.atan(s_c * (1.0 - math.sqrt(1.0 - math.tan(alpha) / mu_c)))
+
+
+def by_second(ax, t, x, y, **kw):
+    """Draws y(x) in pieces of one simulated second, alternating the two colours."""
+    second = np.floor(t).astype(int)
+    for k in np.unique(second):
+        idx = np.nonzero(second == k)[0]
+        if idx[-1] + 1 < len(t):
+            idx = np.append(idx, idx[-1] + 1)  # join to the next piece
+        ax.plot(x[idx], y[idx], color=SECOND_COLOURS[k % 2], **kw)
