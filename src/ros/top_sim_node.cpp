@@ -129,13 +129,16 @@ class TopSimNode {
 #ifdef TOP_SIM_HAVE_LCM
       lcm_ = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
       if (!lcm_->ok()) {
+        lcm_status_ = "error: " + lcm_->error();
         ROS_ERROR("top_sim_node: lcm_url = '%s': %s; LCM is off, ROS publishing continues", lcm_url.c_str(),
                   lcm_->error().c_str());
         lcm_.reset();
       } else {
+        lcm_status_ = "on: " + lcm_url + ", channel " + lcm_channel;
         ROS_INFO("top_sim_node: LCM on '%s', channel %s", lcm_url.c_str(), lcm_channel.c_str());
       }
 #else
+      lcm_status_ = "error: this build has no LCM support";
       ROS_ERROR("top_sim_node: lcm_url = '%s': this build has no LCM support; ROS publishing continues",
                 lcm_url.c_str());
 #endif
@@ -303,6 +306,8 @@ class TopSimNode {
     else if (!paused_ && real_time_factor_ > 0.0 &&
              std::abs(achieved_factor_ - real_time_factor_) > 0.05 * real_time_factor_)
       st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "real-time factor not reached");
+    else if (lcm_status_.rfind("error", 0) == 0)
+      st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "LCM off: " + lcm_status_);
     else
       st.summary(diagnostic_msgs::DiagnosticStatus::OK, paused_ ? "paused" : "running");
     st.add("simulated time [s]", s.t);
@@ -319,6 +324,7 @@ class TopSimNode {
     st.add("alpha [rad]", s.alpha);
     st.add("spin [rad/s]", s.spin);
     st.add("paused", paused_);
+    st.add("lcm", lcm_status_);
     diag_wall_ = wall;
     diag_cpu_ = cpu;
     diag_published_ = published_;
@@ -488,6 +494,7 @@ class TopSimNode {
   std::unique_ptr<dynamic_reconfigure::Server<top_sim::TopSimConfig>> reconfigure_;
   top_sim::TopSimConfig config_;
   bool reconfigure_ready_ = false;
+  std::string lcm_status_ = "off";
 #ifdef TOP_SIM_HAVE_LCM
   std::unique_ptr<top_sim_lcm::Publisher> lcm_;
   bool lcm_send_failed_ = false;

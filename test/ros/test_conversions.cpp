@@ -1,0 +1,133 @@
+// Unit tests of the ROS adapter's pure maps (no master needed): parameters -> YAML, TopCommand -> Command,
+// Snapshot -> tf / TopState.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+
+#include "conversions.hpp"
+#include "param_yaml.hpp"
+#include "top_sim/scene.hpp"
+
+using top_sim_ros::to_command;
+
+TEST(ParamYaml, StructBecomesSceneTheCoreAccepts) {
+  XmlRpc::XmlRpcValue tree;
+  tree["top"] = std::string("aluminium");
+  tree["friction"] = std::string("pmma");
+  tree["plane"]["inclination"] = 0.17;
+  tree["initial"]["spin"] = 150;  // an int on the server must still read as a double
+  tree["initial"]["position"][0] = 0.5;
+  tree["initial"]["position"][1] = -0.25;
+  tree["publish_rate"] = 1000.0;  // the node's own key: dropped
+  const YAML::Node y = top_sim_ros::scene_yaml(tree, {"publish_rate"}, "/top_sim");
+  EXPECT_FALSE(y["publish_rate"]);
+  const top_sim::Scene s = top_sim::parse_scene(y, "/top_sim", TOP_SIM_TEST_CONFIG_DIR);
+  EXPECT_EQ(s.model.plane.inclination, 0.17);
+  EXPECT_EQ(s.initial.spin, 150.0);
+  EXPECT_EQ(s.initial.position.x(), 0.5);
+  EXPECT_EQ(s.initial.position.y(), -0.25);
+}
+
+TEST(ParamYaml, UnknownKeyIsStillAnError) {
+  XmlRpc::XmlRpcValue tree;
+  tree["top"] = std::string("aluminium");
+  tree["plane"]["inclinaton"] = 0.1;  // typo must not be ignored
+  const YAML::Node y = top_sim_ros::scene_yaml(tree, {}, "/top_sim");
+  try {
+    top_sim::parse_scene(y, "/top_sim", TOP_SIM_TEST_CONFIG_DIR);
+    FAIL() << "typo accepted";
+  } catch (const top_sim::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("inclinaton"), std::string::npos) << e.what();
+  }
+}
+
+TEST(TopCommand, OnlySetFieldsAreCarried) {
+  top_sim::TopCommand m;
+  m.set_inclination = true;
+  m.inclination = 0.2;
+  m.spin = 99.0;  // not set: ignored
+  std::string error;
+  const top_sim::Command c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.inclination);
+  EXPECT_EQ(*c.inclination, 0.2);
+  EXPECT_FALSE(c.spin);
+  EXPECT_FALSE(c.friction);
+}
+
+TEST(TopCommand, FrictionLawByName) {
+  top_sim::TopCommand m;
+  m.set_friction = true;
+  m.friction_law = "table";
+  m.table_s = {0.0, 0.5, 1.0};
+  m.table_mu = {0.0, 0.3, 0.2};
+  std::string error;
+  top_sim::Command c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.friction);
+  EXPECT_EQ(c.friction->kind, top_sim::FrictionLawKind::table);
+  ASSERT_EQ(c.friction->points.size(), 3u);
+  EXPECT_EQ(c.friction->points[1].second, 0.3);
+
+  m.table_mu.pop_back();
+  to_command(m, error);
+  EXPECT_NE(error.find("table_mu"), std::string::npos) << error;
+
+  m.friction_law = "viscous";
+  to_command(m, error);
+  EXPECT_NE(error.find("friction_law = 'viscous'"), std::string::npos) << error;
+}
+
+TEST(TopCommand, EmptyCommandIsReported) {
+  std::string error;
+  to_command(top_sim::TopCommand(), error);
+  EXPECT_NE(error.find("no field is set"), std::string::npos) << error;
+}
+
+TEST(Transforms, PlaneIsTiltedByAlphaAboutXAndUphillRises) {
+  top_sim::Snapshot s;
+  s.alpha = 0.3;
+  s.com = Eigen::Vector3d(0.1, 0.2, 0.01);
+  geometry_msgs::TransformStamped wp, pt;
+  top_sim_ros::to_transforms(s, ros::Time(10.0), top_sim_ros::Frames(), wp, pt);
+  EXPECT_EQ(wp.header.frame_id, "world");
+  EXPECT_EQ(wp.child_frame_id, "plane");
+  EXPECT_EQ(pt.header.frame_id, "plane");
+  EXPECT_EQ(pt.child_frame_id, "top");
+  const auto& q = wp.transform.rotation;
+  const Eigen::Quaterniond r(q.w, q.x, q.y, q.z);
+  // Plane y (uphill) seen from world: (0, cos alpha, sin alpha).
+  const Eigen::Vector3d up = r * Eigen::Vector3d::UnitY();
+  EXPECT_NEAR(up.y(), std::cos(0.3), 1e-15);
+  EXPECT_NEAR(up.z(), std::sin(0.3), 1e-15);
+  EXPECT_EQ(pt.transform.translation.y, 0.2);
+}
+
+TEST(Snapshot, NonFiniteValuesAreDetected) {
+  top_sim::Snapshot s;
+  EXPECT_TRUE(top_sim_ros::all_finite(s));
+  s.friction_force.y() = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(top_sim_ros::all_finite(s));
+  s.friction_force.y() = 0.0;
+  s.mu = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(top_sim_ros::all_finite(s));
+}
+
+TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
+  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::sleeping), top_sim::TopState::SLEEPING);
+  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::contact_fault), top_sim::TopState::CONTACT_FAULT);
+  top_sim::Snapshot s;
+  s.t = 2.5;
+  s.regime = top_sim::Regime::sliding;
+  top_sim::TopState m;
+  top_sim_ros::to_msg(s, ros::Time(5.0), "plane", m);
+  EXPECT_EQ(m.regime, top_sim::TopState::SLIDING);
+  EXPECT_EQ(m.regime_name, "sliding");
+  EXPECT_EQ(m.sim_time, 2.5);
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  return RUN_ALL_TESTS();
+}
