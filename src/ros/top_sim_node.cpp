@@ -119,9 +119,11 @@ class TopSimNode {
     marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
     path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 2);
     if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
-    inclination_sub_ = pnh_.subscribe("inclination", 10, &TopSimNode::on_inclination, this);
-    spin_sub_ = pnh_.subscribe("spin", 10, &TopSimNode::on_spin, this);
-    command_sub_ = pnh_.subscribe("command", 10, &TopSimNode::on_command, this);
+    // No Nagle delay on commands: their latency is part of the contract (two publish periods).
+    const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
+    inclination_sub_ = pnh_.subscribe("inclination", 10, &TopSimNode::on_inclination, this, hints);
+    spin_sub_ = pnh_.subscribe("spin", 10, &TopSimNode::on_spin, this, hints);
+    command_sub_ = pnh_.subscribe("command", 10, &TopSimNode::on_command, this, hints);
     reset_srv_ = pnh_.advertiseService("reset", &TopSimNode::on_reset, this);
     pause_srv_ = pnh_.advertiseService("pause", &TopSimNode::on_pause, this);
 
