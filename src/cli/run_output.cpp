@@ -8,7 +8,12 @@
 namespace top_sim {
 
 namespace {
-double cpu_now() { return static_cast<double>(std::clock()) / CLOCKS_PER_SEC; }
+// CPU time of this thread: tools run several simulations in parallel threads.
+double cpu_now() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
 
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";
