@@ -10,7 +10,9 @@
 
 namespace top_sim {
 
-enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4 };
+// switching: dopri5 while the motion is non-stiff, rosenbrock4 once its steps buy more simulated time per cost
+// (the sleeping regime, where explicit steps are stability-limited).
+enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4, switching };
 
 const char* to_string(Method m);
 bool parse_method(const std::string& name, Method& out);

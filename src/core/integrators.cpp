@@ -1,4 +1,5 @@
-// Time steppers: Euler, RK4 and Dormand-Prince 5(4) and Rosenbrock 4 from Boost.Odeint, semi-implicit Euler here.
+// Time steppers: Euler, RK4, Dormand-Prince 5(4) and Rosenbrock 4 from Boost.Odeint; semi-implicit Euler and the
+// dopri5/rosenbrock4 switch here.
 #include "top_sim/integrators.hpp"
 
 #include <algorithm>
@@ -20,12 +21,14 @@ const char* to_string(Method m) {
     case Method::rk4: return "rk4";
     case Method::dopri5: return "dopri5";
     case Method::rosenbrock4: return "rosenbrock4";
+    case Method::switching: return "switching";
   }
   return "?";
 }
 
 bool parse_method(const std::string& name, Method& out) {
-  for (Method m : {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::dopri5, Method::rosenbrock4})
+  for (Method m : {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::dopri5, Method::rosenbrock4,
+                   Method::switching})
     if (name == to_string(m)) {
       out = m;
       return true;
@@ -33,7 +36,7 @@ bool parse_method(const std::string& name, Method& out) {
   return false;
 }
 
-bool is_adaptive(Method m) { return m == Method::dopri5 || m == Method::rosenbrock4; }
+bool is_adaptive(Method m) { return m == Method::dopri5 || m == Method::rosenbrock4 || m == Method::switching; }
 
 namespace {
 
@@ -144,10 +147,12 @@ class Dopri5Stepper : public Stepper {
         system_(std::move(system)),
         dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), Adjuster(s.max_dt))) {}
 
-  void reset(const StateVector& y, double t) override {
-    const double dt = next_dt_ > 0.0 ? next_dt_ : settings_.dt;
+  void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
+  void reset(const StateVector& y, double t, double dt) {
     dense_.initialize(y, t, dt);
+    renormalized_ = false;
   }
+  double next_step_size() const { return next_dt_; }
 
   void step(double) override {
     CountingSystem sys{&system_, &stats.rhs_evaluations};
@@ -192,6 +197,9 @@ class Dopri5Stepper : public Stepper {
 // ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------
 
 using UVector = boost::numeric::ublas::vector<double>;
+// Relative central-difference step: truncation and round-off both ~1e-11 relative; the 1e-3 floor keeps the
+// velocity step (1e-9 m/s) at the scale of v_eps.
+constexpr double kJacobianStep = 1e-6;
 using UMatrix = boost::numeric::ublas::matrix<double>;
 
 // odeint's Rosenbrock 4 with the spin phase excluded from its error estimate.
@@ -219,22 +227,28 @@ class Rosenbrock4Stepper : public Stepper {
       std::copy(ds.begin(), ds.end(), dxdt.begin());
     }
   };
-  // Forward differences with steps small against v_eps-scale kinks of the friction law.
+  // Central differences: Rosenbrock methods lose order with an inexact Jacobian, and forward differences at
+  // 1e-9 relative (round-off ~1e-7) made 8x more steps on the default scene (docs/performance.md).
   struct Jacobian {
     Rosenbrock4Stepper* self;
     void operator()(const UVector& x, UMatrix& jac, double, UVector& dfdt) const {
-      StateVector xs, f0, f1;
+      StateVector xs, f_plus, f_minus;
       std::copy(x.begin(), x.end(), xs.begin());
-      self->system_(xs, f0);
-      ++self->stats.rhs_evaluations;
       for (std::size_t j = 0; j < idx::size; ++j) {
-        const double h = 1e-9 * std::max(std::abs(xs[j]), 1e-3);
+        // Nothing depends on the position or the dissipated work: their columns are zero.
+        if (j == idx::x || j == idx::x + 1 || j == idx::w_diss || j == idx::psi) {
+          for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = 0.0;
+          continue;
+        }
+        const double h = kJacobianStep * std::max(std::abs(xs[j]), 1e-3);
         const double saved = xs[j];
         xs[j] = saved + h;
-        self->system_(xs, f1);
-        ++self->stats.rhs_evaluations;
+        self->system_(xs, f_plus);
+        xs[j] = saved - h;
+        self->system_(xs, f_minus);
+        self->stats.rhs_evaluations += 2;
         xs[j] = saved;
-        for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = (f1[i] - f0[i]) / h;
+        for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = (f_plus[i] - f_minus[i]) / (2.0 * h);
       }
       for (std::size_t i = 0; i < idx::size; ++i) dfdt[i] = 0.0;  // autonomous
     }
@@ -247,9 +261,9 @@ class Rosenbrock4Stepper : public Stepper {
         dense_{Dense(Controller(s.atol, s.rtol, s.max_dt)), Dense(Controller(s.atol, s.rtol, s.max_dt))},
         x_(idx::size) {}
 
-  void reset(const StateVector& y, double t) override {
+  void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
+  void reset(const StateVector& y, double t, double dt) {
     std::copy(y.begin(), y.end(), x_.begin());
-    const double dt = next_dt_ > 0.0 ? next_dt_ : settings_.dt;
     current().initialize(x_, t, dt);
     renormalized_ = false;
     copy_current();
@@ -278,6 +292,7 @@ class Rosenbrock4Stepper : public Stepper {
   double previous_time() const override { return interval().previous_time(); }
   const StateVector& state() const override { return current_; }
   double last_step_size() const override { return time() - previous_time(); }
+  double next_step_size() const { return next_dt_; }
 
   void state_at(double t, StateVector& y) const override {
     if (t >= time()) {
@@ -305,6 +320,110 @@ class Rosenbrock4Stepper : public Stepper {
   bool renormalized_ = false;
 };
 
+// ---- dopri5 / rosenbrock4 switch ---------------------------------------------------------------------------
+
+// Runs dopri5 and now and then probes rosenbrock4 from the current state; keeps whichever advances more simulated
+// time per unit of cost. The cost model is deterministic (right-hand sides plus a per-step overhead in right-hand-side
+// equivalents, from bench/core_bench.cpp) so that runs are repeatable.
+class SwitchingStepper : public Stepper {
+  static constexpr double kExplicitOverhead = 1.0;   // dopri5 bookkeeping per step [RHS equivalents]
+  static constexpr double kStiffOverhead = 45.0;     // rosenbrock4 LU solve and ublas copies per step
+  static constexpr double kMargin = 1.5;             // hysteresis: a switch must pay at least this factor
+  static constexpr std::uint64_t kFirstProbe = 200;  // dopri5 steps before the first rosenbrock4 probe
+  static constexpr std::uint64_t kMaxProbe = 3200;   // the probe interval doubles after each failed probe
+  static constexpr std::uint64_t kProbeSteps = 6;    // rosenbrock4 steps of a probe (its step grows 5x per step)
+  static constexpr std::uint64_t kStiffWindow = 16;  // rosenbrock4 steps between checks of its rate
+
+ public:
+  SwitchingStepper(const IntegratorSettings& s, System system) : explicit_(s, system), stiff_(s, std::move(system)) {}
+
+  void reset(const StateVector& y, double t) override {
+    stiff_active_ = false;
+    probing_ = false;
+    switch_pending_ = false;
+    probe_interval_ = kFirstProbe;
+    explicit_rate_ = 0.0;
+    explicit_.reset(y, t);
+    clear_window();
+  }
+
+  void step(double t_limit) override {
+    if (switch_pending_) do_switch();
+    Stepper& a = active();
+    const StepperStats before = a.stats;
+    a.step(t_limit);
+    const std::uint64_t steps = a.stats.steps - before.steps;
+    const std::uint64_t rhs = a.stats.rhs_evaluations - before.rhs_evaluations;
+    stats.steps += steps;
+    stats.rejected += a.stats.rejected - before.rejected;
+    stats.rhs_evaluations += rhs;
+    window_time_ += a.time() - a.previous_time();
+    window_cost_ += static_cast<double>(rhs) + static_cast<double>(steps) * (stiff_active_ ? kStiffOverhead : kExplicitOverhead);
+    window_steps_ += steps;
+    decide();
+  }
+
+  double time() const override { return active().time(); }
+  double previous_time() const override { return active().previous_time(); }
+  const StateVector& state() const override { return active().state(); }
+  void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
+  double last_step_size() const override { return active().last_step_size(); }
+  bool stiff_active() const { return stiff_active_; }
+
+ private:
+  const Stepper& active() const { return stiff_active_ ? static_cast<const Stepper&>(stiff_) : explicit_; }
+  Stepper& active() { return stiff_active_ ? static_cast<Stepper&>(stiff_) : explicit_; }
+  void clear_window() {
+    window_time_ = window_cost_ = 0.0;
+    window_steps_ = 0;
+  }
+
+  void decide() {
+    if (!stiff_active_) {
+      if (window_steps_ < probe_interval_) return;
+      explicit_rate_ = window_time_ / window_cost_;
+      probing_ = true;
+      switch_pending_ = true;
+    } else if (probing_) {
+      if (window_steps_ < kProbeSteps) return;
+      // The probe's first steps ramp up from dopri5's step: judge it by the step its controller proposes now.
+      const double stiff_rate = stiff_.next_step_size() / (window_cost_ / static_cast<double>(window_steps_));
+      probing_ = false;
+      if (stiff_rate > kMargin * explicit_rate_) {
+        probe_interval_ = kFirstProbe;
+      } else {
+        probe_interval_ = std::min(2 * probe_interval_, kMaxProbe);
+        switch_pending_ = true;
+      }
+    } else {
+      if (window_steps_ < kStiffWindow) return;
+      // A new transient (the top woke up): back to dopri5 once rosenbrock4 no longer pays.
+      if (window_time_ / window_cost_ * kMargin < explicit_rate_) switch_pending_ = true;
+    }
+    clear_window();
+  }
+
+  void do_switch() {
+    switch_pending_ = false;
+    const StateVector y = active().state();
+    const double t = active().time();
+    if (stiff_active_) {
+      explicit_.reset(y, t);
+    } else {
+      const double h = explicit_.next_step_size() > 0.0 ? explicit_.next_step_size() : explicit_.last_step_size();
+      stiff_.reset(y, t, 2.0 * h);
+    }
+    stiff_active_ = !stiff_active_;
+    clear_window();
+  }
+
+  Dopri5Stepper explicit_;
+  Rosenbrock4Stepper stiff_;
+  bool stiff_active_ = false, probing_ = false, switch_pending_ = false;
+  std::uint64_t probe_interval_ = kFirstProbe, window_steps_ = 0;
+  double window_time_ = 0.0, window_cost_ = 0.0, explicit_rate_ = 0.0;
+};
+
 }  // namespace
 
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system) {
@@ -317,6 +436,8 @@ std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System
       return std::make_unique<Dopri5Stepper>(settings, std::move(system));
     case Method::rosenbrock4:
       return std::make_unique<Rosenbrock4Stepper>(settings, std::move(system));
+    case Method::switching:
+      return std::make_unique<SwitchingStepper>(settings, std::move(system));
   }
   throw std::invalid_argument("make_stepper: unknown method");
 }

@@ -315,7 +315,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   {
     Section g(s.raw("integrator"), file, "integrator");
     IntegratorSettings& is = scene.integrator;
-    const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4"});
+    const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4", "switching"});
     parse_method(method, is.method);
     is.dt = g.number("dt", is.dt, [](double v) { return v > 0.0 && v <= 10.0; }, "in (0, 10] [s]");
     is.rtol = g.number("rtol", is.rtol, [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
