@@ -28,6 +28,7 @@ import subprocess
 import sys
 import threading
 import time
+import warnings
 import xmlrpc.client
 
 REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
@@ -92,6 +93,8 @@ class Recorder:
         self.recording = False
         self.pending = None       # (target alpha, send time) of the inclination command in flight
         self.latencies = []
+        self.between = []         # TopStates received after the command was sent, before the one showing it
+        self.seen = 0
         self.sub = rospy.Subscriber(topic, TopState, self.callback, queue_size=10000, tcp_nodelay=True)
 
     def callback(self, msg):
@@ -100,9 +103,13 @@ class Recorder:
             if not self.recording:
                 return
             self.rows.append((now, msg.header.stamp.to_sec(), msg.sim_time, msg.alpha, msg.real_time_factor))
-            if self.pending is not None and abs(msg.alpha - self.pending[0]) < 1e-12:
-                self.latencies.append(now - self.pending[1])
-                self.pending = None
+            if self.pending is not None:
+                if abs(msg.alpha - self.pending[0]) < 1e-12:
+                    self.latencies.append((now - self.pending[1], msg.header.stamp.to_sec() - self.pending[1]))
+                    self.between.append(self.seen)
+                    self.pending = None
+                else:
+                    self.seen += 1
 
 
 def node_pid(master_uri, node):
@@ -135,10 +142,13 @@ def one_run(args, env, rospy, Float64, recorder, index):
             raise RuntimeError(f'{node} did not come up within 60 s (see {log_path})')
         time.sleep(args.warmup)   # connection set-up and the first second of achieved-factor averaging
 
-        pub = rospy.Publisher(f'{node}/inclination', Float64, queue_size=10)
+        # queue_size=None: publish() writes the socket in this thread, so the send time stamped below is exact.
+        with warnings.catch_warnings():
+            warnings.simplefilter('ignore', SyntaxWarning)
+            pub = rospy.Publisher(f'{node}/inclination', Float64, queue_size=None, tcp_nodelay=True)
         time.sleep(0.5)           # let the node connect to this publisher before the first command
         with recorder.lock:
-            recorder.rows, recorder.latencies, recorder.pending = [], [], None
+            recorder.rows, recorder.latencies, recorder.between, recorder.pending = [], [], [], None
             recorder.recording = True
         ticks0, wall0 = cpu_ticks(pid), time.perf_counter()
         loadavg_before = open('/proc/loadavg').read().split()[0]
@@ -152,7 +162,7 @@ def one_run(args, env, rospy, Float64, recorder, index):
             if now >= next_command:
                 target = alphas[(commands + 1) % 2]
                 with recorder.lock:
-                    recorder.pending = (target, time.perf_counter())
+                    recorder.pending, recorder.seen = (target, time.perf_counter()), 0
                 pub.publish(Float64(target))
                 commands += 1
                 next_command = now + 1.0
@@ -161,7 +171,7 @@ def one_run(args, env, rospy, Float64, recorder, index):
         ticks1, wall1 = cpu_ticks(pid), time.perf_counter()
         with recorder.lock:
             recorder.recording = False
-            rows, latencies = list(recorder.rows), list(recorder.latencies)
+            rows, latencies, between = list(recorder.rows), list(recorder.latencies), list(recorder.between)
         pub.unregister()
     finally:
         os.killpg(launch.pid, signal.SIGINT)
@@ -181,6 +191,11 @@ def one_run(args, env, rospy, Float64, recorder, index):
     gaps = [b - a for a, b in zip(recv, recv[1:])]
     stamp_steps = [b - a for a, b in zip(stamp, stamp[1:])]
     jitter = arrival_jitter(recv, stamp)
+    # Scheduled latency: when the effect would have arrived with the run's median delivery offset, which
+    # removes stalls of this (Python) subscriber from the figure.
+    offset = statistics.median(r - st for r, st in zip(recv, stamp))
+    sched = [stamp_minus_send + offset for _, stamp_minus_send in latencies]
+    latencies = [received for received, _ in latencies]
     return {
         'run': index,
         'wall_s': wall1 - wall0,
@@ -199,6 +214,9 @@ def one_run(args, env, rospy, Float64, recorder, index):
         'latency_samples': len(latencies),
         'latency_p50_ms': 1e3 * percentile(latencies, 50) if latencies else None,
         'latency_max_ms': 1e3 * max(latencies) if latencies else None,
+        'sched_latency_p50_ms': 1e3 * percentile(sched, 50) if sched else None,
+        'sched_latency_max_ms': 1e3 * max(sched) if sched else None,
+        'stale_states_p50': statistics.median(between) if between else None,
         'latency_within_period_percent': (100.0 * sum(l <= period for l in latencies) / len(latencies)
                                           if latencies else None),
         'achieved_rtf': (sim[-1] - sim[0]) / (recv[-1] - recv[0]),
@@ -210,7 +228,7 @@ def one_run(args, env, rospy, Float64, recorder, index):
 
 SUMMARY_KEYS = ['cpu_percent', 'interarrival_p50_ms', 'interarrival_p99_ms', 'stamp_step_p50_ms',
                 'stamp_step_p99_ms', 'stamp_gaps', 'jitter_p50_ms', 'jitter_p99_ms',
-                'latency_p50_ms', 'latency_max_ms', 'latency_within_period_percent', 'achieved_rtf',
+                'latency_p50_ms', 'latency_max_ms', 'sched_latency_p50_ms', 'sched_latency_max_ms', 'stale_states_p50', 'latency_within_period_percent', 'achieved_rtf',
                 'reported_rtf_median', 'received', 'expected']
 
 
@@ -264,6 +282,10 @@ def markdown(args, results, summary, command):
         f'| inclination command-to-effect latency, p50 / max [ms] | {fmt(lat)} / {fmt(summary["latency_max_ms"])} '
         f'| <= {period_ms:g} ms (one period): {verdict(lat is not None and lat <= period_ms)} for the median; '
         f'{fmt(summary["latency_within_period_percent"])} % of commands within |',
+        f'| same, effect time taken from its header stamp + median delivery offset, p50 / max [ms] | '
+        f'{fmt(summary["sched_latency_p50_ms"])} / {fmt(summary["sched_latency_max_ms"])} | <= {period_ms:g} ms |',
+        f'| TopStates received after the command still showing the old alpha (median) | '
+        f'{fmt(summary["stale_states_p50"])} | 0 or 1 |',
         f'| achieved real-time factor (simulated / wall time) | {fmt(summary["achieved_rtf"], 6)} | within 1 % of '
         f'{args.rtf:g}: {verdict(rtf_err <= 0.01)} |',
         f'| real-time factor reported in TopState (median) | {fmt(summary["reported_rtf_median"], 6)} | |',
@@ -279,6 +301,14 @@ def markdown(args, results, summary, command):
         'first received TopState carrying the new alpha; it includes both transports and the wait for the next '
         'timer tick. Achieved factor: simulated time advanced / receive-time span, first to last message.',
         '',
+    ]
+    busy = max(float(r['loadavg_before']) for r in results)
+    if busy > os.cpu_count():
+        lines += [f'Note: the machine was shared and busy during these runs (1-minute load average up to {busy:g} on '
+                  f'{os.cpu_count()} cores), so timer ticks were delayed or skipped (stamp steps longer than 1.5 '
+                  'periods above) and latency and jitter include waiting for a CPU; rerun on an idle machine for '
+                  'the node\'s own figures.', '']
+    lines += [
         '## Runs',
         '',
         '| run | CPU % | stamp step p50/p99 ms | inter-arrival p50/p99 ms | jitter p50/p99 ms | '
