@@ -102,7 +102,8 @@ class Recorder:
         with self.lock:
             if not self.recording:
                 return
-            self.rows.append((now, msg.header.stamp.to_sec(), msg.sim_time, msg.alpha, msg.real_time_factor))
+            self.rows.append((now, msg.header.stamp.to_sec(), msg.sim_time, msg.alpha, msg.real_time_factor,
+                              msg.header.seq))
             if self.pending is not None:
                 if abs(msg.alpha - self.pending[0]) < 1e-12:
                     self.latencies.append((now - self.pending[1], msg.header.stamp.to_sec() - self.pending[1]))
@@ -210,6 +211,8 @@ def one_run(args, env, rospy, Float64, recorder, index):
         'stamp_step_p50_ms': 1e3 * percentile(stamp_steps, 50),
         'stamp_step_p99_ms': 1e3 * percentile(stamp_steps, 99),
         'stamp_gaps': sum(1 for d in stamp_steps if d > 1.5 * period),
+        # roscpp numbers each published message in header.seq: a hole is a message lost on the way.
+        'lost': (rows[-1][5] - rows[0][5] + 1) - len(rows),
         'commands': commands,
         'latency_samples': len(latencies),
         'latency_p50_ms': 1e3 * percentile(latencies, 50) if latencies else None,
@@ -227,7 +230,7 @@ def one_run(args, env, rospy, Float64, recorder, index):
 
 
 SUMMARY_KEYS = ['cpu_percent', 'interarrival_p50_ms', 'interarrival_p99_ms', 'stamp_step_p50_ms',
-                'stamp_step_p99_ms', 'stamp_gaps', 'jitter_p50_ms', 'jitter_p99_ms',
+                'stamp_step_p99_ms', 'stamp_gaps', 'lost', 'jitter_p50_ms', 'jitter_p99_ms',
                 'latency_p50_ms', 'latency_max_ms', 'sched_latency_p50_ms', 'sched_latency_max_ms', 'stale_states_p50', 'latency_within_period_percent', 'achieved_rtf',
                 'reported_rtf_median', 'received', 'expected']
 
@@ -291,6 +294,7 @@ def markdown(args, results, summary, command):
         f'| real-time factor reported in TopState (median) | {fmt(summary["reported_rtf_median"], 6)} | |',
         f'| TopState received / expected (wall time x rate) | {fmt(summary["received"])} / '
         f'{fmt(summary["expected"])} | |',
+        f'| TopState published but not received (holes in header.seq) | {fmt(summary["lost"])} | 0 |',
         '',
         'Definitions. CPU: utime + stime of the node process (all threads) from `/proc/<pid>/stat` over the '
         'window, divided by the wall time. Stamp step: difference of consecutive header stamps (the node stamps '
@@ -312,7 +316,7 @@ def markdown(args, results, summary, command):
         '## Runs',
         '',
         '| run | CPU % | stamp step p50/p99 ms | inter-arrival p50/p99 ms | jitter p50/p99 ms | '
-        'latency p50/max ms (n) | achieved RTF | received/expected |',
+        'latency p50/max ms (n) | achieved RTF | received/expected (lost) |',
         '|---|---|---|---|---|---|---|---|',
     ]
     for r in results:
@@ -320,7 +324,7 @@ def markdown(args, results, summary, command):
             f'| {r["run"]} | {fmt(r["cpu_percent"])} | {fmt(r["stamp_step_p50_ms"])} / {fmt(r["stamp_step_p99_ms"])} '
             f'| {fmt(r["interarrival_p50_ms"])} / {fmt(r["interarrival_p99_ms"])} | {fmt(r["jitter_p50_ms"])} / '
             f'{fmt(r["jitter_p99_ms"])} | {fmt(r["latency_p50_ms"])} / {fmt(r["latency_max_ms"])} '
-            f'({r["latency_samples"]}) | {fmt(r["achieved_rtf"], 6)} | {r["received"]}/{r["expected"]} |')
+            f'({r["latency_samples"]}) | {fmt(r["achieved_rtf"], 6)} | {r["received"]}/{r["expected"]} ({r["lost"]}) |')
     return '\n'.join(lines) + '\n'
 
 
