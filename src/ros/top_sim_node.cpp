@@ -166,6 +166,12 @@ class TopSimNode {
     reconfigure_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
 
     timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate_), &TopSimNode::tick, this);
+    // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.
+    reconfigure_timer_ = nh_.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
+      if (!config_dirty_) return;
+      config_dirty_ = false;
+      reconfigure_->updateConfig(config_);
+    });
     ROS_INFO("top_sim_node: %s, alpha %.4g rad, spin %.4g rad/s, %s, publishing at %.4g Hz, real-time factor %.4g",
              scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
              top_sim::to_string(scene_.integrator.method), publish_rate_, real_time_factor_);
@@ -346,7 +352,7 @@ class TopSimNode {
     if (c.inclination) config_.alpha = *c.inclination;
     if (c.spin) config_.spin = *c.spin;
     if (c.friction) friction_to_config(*c.friction, config_);
-    if (c.inclination || c.spin || c.friction) reconfigure_->updateConfig(config_);
+    if (c.inclination || c.spin || c.friction) config_dirty_ = true;  // pushed by a slow timer, off the command path
     return true;
   }
 
@@ -381,7 +387,7 @@ class TopSimNode {
     config_.alpha = scene_.model.plane.inclination;
     config_.spin = scene_.initial.spin;
     friction_to_config(scene_.model.friction, config_);
-    reconfigure_->updateConfig(config_);
+    config_dirty_ = true;
     res.success = true;
     std::ostringstream os;
     os << "reset to the scene's initial state at t = " << t << " s (time keeps running forward)";
@@ -490,6 +496,8 @@ class TopSimNode {
   ros::Subscriber inclination_sub_, spin_sub_, command_sub_;
   ros::ServiceServer reset_srv_, pause_srv_;
   ros::WallTimer timer_;
+  ros::WallTimer reconfigure_timer_;
+  bool config_dirty_ = false;
   tf2_ros::TransformBroadcaster tf_;
   diagnostic_updater::Updater updater_;
   boost::recursive_mutex reconfigure_mutex_;
