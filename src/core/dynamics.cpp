@@ -16,6 +16,16 @@ inline Eigen::Vector3d inverse_inertia_times(double inv_d, double inv_f, const E
   return inv_d * v + (inv_f - inv_d) * f_hat.dot(v) * f_hat;
 }
 
+// cos(theta_max) was 7.5 % of all instructions (callgrind): remember it per thread, it changes only with the top.
+inline double cos_max_tilt(double max_tilt) {
+  thread_local double tilt = 0.0, cosine = 1.0;
+  if (max_tilt != tilt) {
+    tilt = max_tilt;
+    cosine = std::cos(max_tilt);
+  }
+  return cosine;
+}
+
 }  // namespace
 
 void evaluate_dynamics(const Model& model, const StateVector& y, Dynamics& out) {
@@ -68,7 +78,7 @@ void evaluate_dynamics(const Model& model, const StateVector& y, Dynamics& out) 
   }
   out.normal_force = N;
   out.margins.normal_force = N;
-  out.margins.tilt = f_hat.z() - std::cos(top.max_tilt);
+  out.margins.tilt = f_hat.z() - cos_max_tilt(top.max_tilt);
 
   out.contact_force = N * d;
   out.friction_force = Eigen::Vector3d(N * (d.x()), N * (d.y()), 0.0);
