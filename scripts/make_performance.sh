@@ -15,7 +15,8 @@ mkdir -p "$DATA" "$IMG"
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
   -DCATKIN_DEVEL_PREFIX="$BUILD/devel" > "$BUILD.cmake.log"
 make -C "$BUILD" -j2 top_sim_study top_sim_run core_bench > "$BUILD.make.log"
-find_bin() { find "$BUILD" -name "$1" -type f -executable | head -1; }
+# The newest match: an older CMake layout may have left a stale copy elsewhere in the build tree.
+find_bin() { find "$BUILD" -name "$1" -type f -executable -printf '%T@ %p\n' | sort -n | tail -1 | cut -d' ' -f2-; }
 STUDY=$(find_bin top_sim_study)
 BENCH=$(find_bin core_bench)
 
@@ -34,10 +35,10 @@ if command -v valgrind > /dev/null; then
   rm -f "$SCENE"
 fi
 
-/usr/bin/python3 "$ROOT/scripts/perf/plot_performance.py" "$DATA" "$IMG" "$DATA/perf_tables.md"
-/usr/bin/python3 "$ROOT/scripts/perf/bench_table.py" "$DATA/perf_bench.json" >> "$DATA/perf_tables.md"
+/usr/bin/python3 "$ROOT/scripts/perf/plot_performance.py" "$DATA" "$IMG" "$BUILD/perf_tables.md"
+/usr/bin/python3 "$ROOT/scripts/perf/bench_table.py" "$DATA/perf_bench.json" >> "$BUILD/perf_tables.md"
 # Splice the generated tables into docs/performance.md between its markers (the prose around them is hand-written).
-/usr/bin/python3 - "$ROOT/docs/performance.md" "$DATA/perf_tables.md" "$DATA/perf_callgrind.txt" <<'PY'
+/usr/bin/python3 - "$ROOT/docs/performance.md" "$BUILD/perf_tables.md" "$DATA/perf_callgrind.txt" <<'PY'
 import pathlib, sys
 doc, tables, cg = (pathlib.Path(p) for p in sys.argv[1:])
 text = doc.read_text()
