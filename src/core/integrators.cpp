@@ -327,7 +327,7 @@ class Rosenbrock4Stepper : public Stepper {
 // equivalents, from bench/core_bench.cpp) so that runs are repeatable.
 class SwitchingStepper : public Stepper {
   static constexpr double kExplicitOverhead = 1.0;   // dopri5 bookkeeping per step [RHS equivalents]
-  static constexpr double kStiffOverhead = 45.0;     // rosenbrock4 LU solve and ublas copies per step
+  static constexpr double kStiffOverhead = 110.0;    // rosenbrock4 LU solve and ublas copies per step (7 us - 24 RHS)
   static constexpr double kMargin = 1.5;             // hysteresis: a switch must pay at least this factor
   static constexpr std::uint64_t kFirstProbe = 200;  // dopri5 steps before the first rosenbrock4 probe
   static constexpr std::uint64_t kMaxProbe = 3200;   // the probe interval doubles after each failed probe
