@@ -1,0 +1,202 @@
+// The command line top_sim_run (docs/interfaces.md): exit codes, messages on stderr, JSON summary, CSV columns.
+// Boost 1.74's property_tree pulls in boost/bind.hpp, which otherwise warns about its global placeholders.
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "test_util.hpp"
+
+namespace {
+
+namespace pt = boost::property_tree;
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// A private scratch directory per test process, removed at exit.
+struct ScratchDir {
+  std::string path;
+  ScratchDir() {
+    char tmpl[] = "/tmp/top_sim_cli_test_XXXXXX";
+    const char* d = mkdtemp(tmpl);
+    if (!d) throw std::runtime_error("mkdtemp failed");
+    path = d;
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+const std::string& scratch() {
+  static const ScratchDir dir;
+  return dir.path;
+}
+
+std::string in_scratch(const std::string& name) { return scratch() + "/" + name; }
+
+CliResult run_cli(const std::string& args) {
+  const std::string out = in_scratch("stdout.txt"), err = in_scratch("stderr.txt");
+  const std::string cmd = std::string("'") + TOP_SIM_TEST_RUN_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+TEST(Cli, BadSceneExitsTwoAndNamesFileKeyValueRange) {
+  const std::string path = top_sim_test::fixture_path("bad_inclination");
+  const CliResult r = run_cli("'" + path + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, path)) << r.err;
+  EXPECT_TRUE(contains(r.err, "plane.inclination: 2 is out of range")) << r.err;
+  EXPECT_TRUE(contains(r.err, "(-pi/2, pi/2)")) << r.err;
+}
+
+TEST(Cli, BadArgumentsExitTwoAndNameTheArgument) {
+  const std::string scene = "'" + top_sim_test::scene_path("default") + "'";
+  CliResult r = run_cli(scene + " --duration -1");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--duration = '-1'")) << r.err;
+  EXPECT_TRUE(contains(r.err, "> 0")) << r.err;  // the allowed range
+  r = run_cli(scene + " --rate fast");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--rate = 'fast'")) << r.err;
+  r = run_cli(scene + " --frobnicate");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--frobnicate")) << r.err;
+  r = run_cli(scene + " --summary");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "--summary")) << r.err;
+  r = run_cli("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "no scene file")) << r.err;
+  r = run_cli("'" + in_scratch("missing.yaml") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "missing.yaml: cannot open")) << r.err;
+}
+
+TEST(Cli, ContactFaultExitsThree) {
+  const std::string summary = in_scratch("fault.json");
+  const CliResult r = run_cli("'" + top_sim_test::fixture_path("falls_over") + "' --summary '" + summary + "'");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(contains(r.err, "contact fault")) << r.err;
+  EXPECT_TRUE(contains(r.err, "fallen")) << r.err;
+  pt::ptree j;
+  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
+  EXPECT_EQ(j.get<std::string>("regime"), "contact_fault");
+  EXPECT_NE(j.get<std::string>("contact_fault"), "null");
+  EXPECT_TRUE(contains(j.get<std::string>("contact_fault"), "fallen"));
+}
+
+TEST(Cli, DefaultSceneSummaryHasTheDocumentedKeysAndSleepsAtPhiStar) {
+  const std::string summary = in_scratch("default.json");
+  const CliResult r = run_cli("'" + top_sim_test::scene_path("default") + "' --summary '" + summary + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  pt::ptree j;
+  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
+  for (const char* key : {"sim_seconds", "cpu_seconds", "steps", "rhs_evaluations", "regime", "phi_measured", "phi_star",
+                          "final", "final.position", "final.velocity", "final.f_hat", "final.omega", "final.rotor_spin",
+                          "energy_balance_residual", "contact_fault"})
+    EXPECT_TRUE(j.get_child_optional(key)) << "missing key " << key;
+  // Boost's JSON reader keeps null as the text "null".
+  EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
+  EXPECT_EQ(j.get<std::string>("final.rotor_spin"), "null");  // no rotor on this top
+  EXPECT_EQ(j.get<std::string>("regime"), "sleeping");
+  EXPECT_NEAR(j.get<double>("sim_seconds"), 300.0, 1e-9);  // the scene's duration
+  EXPECT_GT(j.get<long>("steps"), 0);
+  EXPECT_GE(j.get<long>("rhs_evaluations"), j.get<long>("steps"));
+  const double phi_measured = j.get<double>("phi_measured"), phi_star = j.get<double>("phi_star");
+  // The acceptance criterion: within 1e-3 rad; phi_star is physics.md's formula (printed to 17 digits).
+  EXPECT_NEAR(phi_measured, phi_star, 1e-3);
+  EXPECT_NEAR(phi_star, top_sim_test::paper_phi_star(0.1, 0.25, 0.6), 1e-15);
+  EXPECT_LT(j.get<double>("energy_balance_residual"), 1e-6);
+  EXPECT_EQ(j.get_child("final.position").size(), 2u);
+  EXPECT_EQ(j.get_child("final.velocity").size(), 2u);
+  EXPECT_EQ(j.get_child("final.f_hat").size(), 3u);
+  EXPECT_EQ(j.get_child("final.omega").size(), 3u);
+  // The final velocity points along phi (angle from h towards downhill, -e_y).
+  std::vector<double> v;
+  for (const auto& kv : j.get_child("final.velocity")) v.push_back(kv.second.get_value<double>());
+  EXPECT_NEAR(std::atan2(-v[1], v[0]), phi_star, 1e-3);
+  top_sim_test::note("CLI default scene: |phi_measured - phi_star|", std::abs(phi_measured - phi_star));
+  top_sim_test::note("CLI default scene: cpu_seconds", j.get<double>("cpu_seconds"));
+}
+
+TEST(Cli, SummaryToStandardOutput) {
+  const CliResult r = run_cli("'" + top_sim_test::scene_path("upright") + "' --duration 0.5 --summary -");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  pt::ptree j;
+  std::istringstream in(r.out);
+  ASSERT_NO_THROW(pt::read_json(in, j)) << r.out;
+  EXPECT_NEAR(j.get<double>("sim_seconds"), 0.5, 1e-12);
+  EXPECT_EQ(j.get<std::string>("phi_star"), "null");  // an upright top at alpha 0 has no direction of travel
+}
+
+std::vector<std::string> split(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string cell;
+  while (std::getline(ss, cell, ',')) out.push_back(cell);
+  return out;
+}
+
+TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
+  const std::string csv = in_scratch("default.csv");
+  const CliResult r =
+      run_cli("'" + top_sim_test::scene_path("default") + "' --duration 1 --rate 10 --csv '" + csv + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(csv);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  const std::vector<std::string> header = split(line);
+  // docs/interfaces.md: t, position and velocity of the centre of mass, contact point, f_hat, omega, s, mu, N, phi,
+  // regime, energy, energy-balance residual.
+  for (const char* col : {"t", "com_x", "com_y", "com_z", "vcm_x", "vcm_y", "vcm_z", "contact_x", "contact_y", "f_x",
+                          "f_y", "f_z", "omega_x", "omega_y", "omega_z", "s", "mu", "N", "phi", "regime", "energy",
+                          "energy_residual"})
+    EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << "missing column " << col << ": " << line;
+  std::vector<std::vector<std::string>> rows;
+  while (std::getline(in, line))
+    if (!line.empty()) rows.push_back(split(line));
+  // 1 s at 10 Hz: t = 0, 0.1, ..., 1.0.
+  ASSERT_EQ(rows.size(), 11u);
+  const auto t_col = std::find(header.begin(), header.end(), "t") - header.begin();
+  const auto regime_col = std::find(header.begin(), header.end(), "regime") - header.begin();
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    ASSERT_EQ(rows[k].size(), header.size()) << "row " << k;
+    EXPECT_NEAR(std::stod(rows[k][t_col]), 0.1 * k, 1e-9);
+    const std::string& regime = rows[k][regime_col];
+    EXPECT_TRUE(regime == "nutating" || regime == "precessing" || regime == "sleeping" || regime == "sliding" ||
+                regime == "contact_fault")
+        << regime;
+  }
+}
+
+}  // namespace

@@ -1,0 +1,200 @@
+// Scene configuration errors (docs/interfaces.md): one test per kind, each message naming the file, the key, the
+// value and the allowed range.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "test_util.hpp"
+
+namespace {
+
+using namespace top_sim;
+using top_sim_test::scene_from;
+
+// Parses `yaml` as file `source` and returns the SceneError's message ("" and a test failure if none is thrown).
+std::string error_of(const std::string& yaml, const std::string& source) {
+  try {
+    scene_from(yaml, source);
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file, source);
+    return e.what();
+  } catch (const std::exception& e) {
+    ADD_FAILURE() << "not a SceneError: " << e.what();
+    return "";
+  }
+  ADD_FAILURE() << "accepted a bad scene:\n" << yaml;
+  return "";
+}
+
+// The message names the file, "key: value" together, and the allowed range.
+void expect_error(const std::string& yaml, const std::string& key, const std::string& value, const std::string& range) {
+  const std::string source = "bad_" + key + ".yaml";
+  const std::string msg = error_of(yaml, source);
+  SCOPED_TRACE(msg);
+  EXPECT_EQ(msg.rfind(source + ": ", 0), 0u) << "file first";
+  EXPECT_NE(msg.find(key + ": " + value), std::string::npos) << "key and value";
+  EXPECT_NE(msg.find(range), std::string::npos) << "allowed range";
+}
+
+const std::string kTop = "top: aluminium\n";
+
+TEST(SceneErrors, UnknownKeyAtTopLevel) {
+  // The "value" of an unknown key is the key itself; the allowed range is the list of known keys.
+  expect_error(kTop + "duraton: 5\n", "duraton", "unknown key", "duration");
+}
+
+TEST(SceneErrors, UnknownKeyNested) {
+  expect_error(kTop + "plane: {inclinaton: 0.1}\n", "plane.inclinaton", "unknown key", "inclination");
+  expect_error("top: {mass: 0.025, rotor: {inertia_axial: 1.0e-6, spinn: 10}}\n", "top.rotor.spinn", "unknown key",
+               "spin");
+  expect_error(kTop + "integrator: {method: dopri5, rtoll: 1.0e-6}\n", "integrator.rtoll", "unknown key", "rtol");
+}
+
+TEST(SceneErrors, WrongType) {
+  expect_error(kTop + "plane: {inclination: steep}\n", "plane.inclination", "'steep' is not a number",
+               "in (-pi/2, pi/2)");
+  expect_error("top: {mass: [1, 2]}\n", "top.mass", "a list is not a number", "> 0");
+  expect_error(kTop + "model: {normal_force: 3}\n", "model.normal_force", "'3'", "constrained | static");
+  expect_error(kTop + "initial: {position: 0.5}\n", "initial.position", "'0.5'", "list of 2 numbers");
+  expect_error(kTop + "plane: 0.1\n", "plane", "'0.1'", "not a mapping");
+}
+
+TEST(SceneErrors, OutOfRangeValues) {
+  expect_error("top: {mass: -1}\n", "top.mass", "-1", "> 0");
+  expect_error("top: {max_tilt: 4}\n", "top.max_tilt", "4", "(0, pi)");
+  expect_error("top: {tip_radius: -0.001}\n", "top.tip_radius", "-0.001", ">= 0");
+  // A rigid axisymmetric body has I_f <= 2 I_d.
+  expect_error("top: {inertia_axial: 7.0e-6, inertia_transverse: 3.0e-6}\n", "top.inertia_axial", "7e-06",
+               "<= 2 * inertia_transverse");
+  expect_error("top: {rotor: {inertia_axial: 6.0e-6}}\n", "top.rotor.inertia_axial", "6e-06", "(0, top.inertia_axial");
+  expect_error(kTop + "plane: {inclination: 2.0}\n", "plane.inclination", "2", "(-pi/2, pi/2)");
+  expect_error(kTop + "plane: {gravity: 0}\n", "plane.gravity", "0", "> 0");
+  expect_error(kTop + "friction: {law: paper, s_c: 1.5}\n", "friction.s_c", "1.5", "(0, 1]");
+  expect_error(kTop + "friction: {law: paper, mu_c: -0.2}\n", "friction.mu_c", "-0.2", "> 0");
+  expect_error(kTop + "friction: {law: coulomb, mu: -1}\n", "friction.mu", "-1", ">= 0");
+  expect_error(kTop + "friction: {regularization_speed: 0}\n", "friction.regularization_speed", "0", "> 0");
+  expect_error(kTop + "friction: {law: dry}\n", "friction.law", "'dry'", "paper | linearized | coulomb | table");
+  expect_error(kTop + "initial: {tilt: -0.1}\n", "initial.tilt", "-0.1", "[0, pi)");
+  expect_error(kTop + "initial: {start: sleeping}\n", "initial.start", "'sleeping'", "tilted | stationary");
+  expect_error(kTop + "integrator: {rtol: 2}\n", "integrator.rtol", "2", "(0, 1)");
+  expect_error(kTop + "integrator: {dt: 0}\n", "integrator.dt", "0", "(0, 10]");
+  expect_error(kTop + "integrator: {method: rk45}\n", "integrator.method", "'rk45'", "dopri5");
+  expect_error(kTop + "duration: -5\n", "duration", "-5", "> 0");
+}
+
+TEST(SceneErrors, MissingTop) {
+  const std::string msg = error_of("plane: {inclination: 0.1}\n", "no_top.yaml");
+  EXPECT_NE(msg.find("no_top.yaml: top: required"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("config/tops/"), std::string::npos) << msg;  // what is allowed instead
+}
+
+TEST(SceneErrors, UnknownTopOrPlaneFile) {
+  const std::string top = error_of("top: titanium\n", "titanium.yaml");
+  EXPECT_NE(top.find("titanium.yaml: top: 'titanium' names no file"), std::string::npos) << top;
+  EXPECT_NE(top.find("/tops/"), std::string::npos) << top;  // where names are looked up
+  const std::string plane = error_of(kTop + "friction: teflon\n", "teflon.yaml");
+  EXPECT_NE(plane.find("teflon.yaml: friction: 'teflon' names no file"), std::string::npos) << plane;
+  EXPECT_NE(plane.find("/planes/"), std::string::npos) << plane;
+}
+
+TEST(SceneErrors, ParameterOfAnotherFrictionLaw) {
+  const std::string msg = error_of(kTop + "friction: {law: coulomb, mu: 0.3, mu_c: 0.25}\n", "mixed_law.yaml");
+  EXPECT_EQ(msg.rfind("mixed_law.yaml: friction.mu_c: ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("law coulomb"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("law paper"), std::string::npos) << msg;
+  // FIXME(core): docs/interfaces.md requires the value too; src/core/scene.cpp read_friction_law's only_for()
+  // message ("is not a parameter of law coulomb (it belongs to law paper)") omits '0.25' and the keys law coulomb
+  // takes (mu). Left failing for the core owner.
+  EXPECT_NE(msg.find("0.25"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, BadTablePoints) {
+  // Unsorted s.
+  std::string msg = error_of(kTop + "friction: {law: table, points: [[0.0, 0.0], [0.6, 0.3], [0.4, 0.2]]}\n",
+                             "unsorted.yaml");
+  EXPECT_NE(msg.find("unsorted.yaml: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("friction.points[2].s = 0.4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("greater than the previous s (0.6"), std::string::npos) << msg;
+  // s outside [0, 1].
+  msg = error_of(kTop + "friction: {law: table, points: [[0.0, 0.0], [1.5, 0.3]]}\n", "outside.yaml");
+  EXPECT_NE(msg.find("outside.yaml: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("friction.points[1].s = 1.5"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("[0, 1]"), std::string::npos) << msg;
+  // Not a number, and a point that is not a pair.
+  expect_error(kTop + "friction: {law: table, points: [[0.0, x], [1.0, 0.3]]}\n", "friction.points[0][1]", "'x'",
+               "finite number");
+  expect_error(kTop + "friction: {law: table, points: [[0.0, 0.1, 2], [1.0, 0.3]]}\n", "friction.points[0]",
+               "a list", "[s, mu]");
+  // Missing points.
+  msg = error_of(kTop + "friction: {law: table}\n", "no_points.yaml");
+  EXPECT_NE(msg.find("no_points.yaml: friction.points: required"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, EventsOutOfOrder) {
+  expect_error(kTop + "events:\n  - {t: 5.0, inclination: 0.15}\n  - {t: 3.0, spin: 100.0}\n", "events[1].t", "3",
+               ">= the previous event's t = 5");
+  expect_error(kTop + "events:\n  - {t: -1.0, spin: 100.0}\n", "events[0].t", "-1", ">= 0");
+  expect_error(kTop + "events:\n  - {t: 1.0, inclination: 3.0}\n", "events[0].inclination", "3", "(-pi/2, pi/2)");
+}
+
+TEST(SceneErrors, AdiabaticModelAboveAlphaC) {
+  // alpha 0.3 > alpha_c = atan(0.25) = 0.245: no stationary state for the reduced model to follow.
+  const std::string msg = error_of(kTop + "plane: {inclination: 0.3}\nmodel: {kind: adiabatic}\n", "adiabatic.yaml");
+  EXPECT_EQ(msg.rfind("adiabatic.yaml: model.kind: ", 0), 0u) << msg;
+  EXPECT_NE(msg.find("adiabatic"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("tan(alpha) = 0.309"), std::string::npos) << msg;  // the value that is out of range
+  EXPECT_NE(msg.find("alpha_c = 0.24"), std::string::npos) << msg;      // the limit
+}
+
+TEST(SceneErrors, StationaryStartImpossible) {
+  const std::string msg =
+      error_of(kTop + "plane: {inclination: 0.3}\ninitial: {start: stationary, spin: 200.0}\n", "stationary.yaml");
+  EXPECT_EQ(msg.rfind("stationary.yaml: initial.start: 'stationary' is impossible", 0), 0u) << msg;
+  EXPECT_NE(msg.find("tan(alpha) = 0.309"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("alpha_c = 0.24"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, FilesThatCannotBeReadOrParsed) {
+  try {
+    load_scene(top_sim_test::fixture_path("bad_yaml"));
+    ADD_FAILURE() << "invalid YAML accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("bad_yaml.yaml: not valid YAML"), std::string::npos) << e.what();
+  }
+  try {
+    load_scene(top_sim_test::fixture_path("does_not_exist"));
+    ADD_FAILURE() << "missing file accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("does_not_exist.yaml: cannot open"), std::string::npos) << e.what();
+  }
+  // A scene file's error names that file (the path as given).
+  try {
+    load_scene(top_sim_test::fixture_path("bad_inclination"));
+    ADD_FAILURE() << "bad inclination accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.file, top_sim_test::fixture_path("bad_inclination"));
+    EXPECT_NE(std::string(e.what()).find("plane.inclination: 2 is out of range"), std::string::npos) << e.what();
+  }
+}
+
+TEST(SceneWarnings, FrictionClampIsSaidOnce) {
+  const Scene s = scene_from(kTop + "friction: {law: paper, mu_c: 0.25, s_c: 0.4}\n", "clamped.yaml");
+  ASSERT_EQ(s.warnings.size(), 1u);
+  EXPECT_NE(s.warnings[0].find("clamped to 0"), std::string::npos) << s.warnings[0];
+  EXPECT_TRUE(scene_from(kTop + "friction: {law: paper, mu_c: 0.25, s_c: 0.6}\n").warnings.empty());
+}
+
+// Control for all of the above: every shipped scene loads, so the errors come from the bad values alone.
+TEST(SceneErrors, EveryShippedSceneLoads) {
+  int n = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(top_sim_test::config_dir() + "/scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    ++n;
+    EXPECT_NO_THROW(load_scene(entry.path().string())) << entry.path();
+  }
+  EXPECT_GE(n, 5);  // default, supercritical, reversed_spin, upright, gyro_reversal at least
+}
+
+}  // namespace
