@@ -31,6 +31,10 @@ void evaluate_dynamics(const Model& model, const StateVector& y, Dynamics& out);
 // dy/dt of the full model with the model's normal-force choice.
 void derivative(const Model& model, const StateVector& y, StateVector& dydt);
 
+// Finite-difference step bounds for a Jacobian: u and omega must not step across the friction kink, whose
+// width is max(|v_t|, v_eps) in the contact velocity (0 = no bound for that component).
+void jacobian_difference_steps(const Model& model, const StateVector& y, StateVector& max_step);
+
 // dy/dt for whichever model kind the model selects (full or adiabatic).
 void model_derivative(const Model& model, const StateVector& y, StateVector& dydt);
 

@@ -50,7 +50,12 @@ class Stepper {
   StepperStats stats;
 };
 
+// Upper bounds on the finite-difference steps of an approximate Jacobian (0 = no bound), from the model:
+// a regularised friction kink of width v_eps must not be stepped across.
+using DifferenceSteps = std::function<void(const StateVector& y, StateVector& max_step)>;
+
 // `system` is called for every right-hand side; the stepper counts the calls.
-std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system);
+std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
+                                      DifferenceSteps difference_steps = {});
 
 }  // namespace top_sim

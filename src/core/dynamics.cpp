@@ -1,6 +1,7 @@
 // Right-hand side of the full model (physics.md sections 3, 4 and 6).
 #include "top_sim/dynamics.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "top_sim/adiabatic.hpp"
@@ -106,6 +107,15 @@ void derivative(const Model& model, const StateVector& y, StateVector& dydt) {
   dydt[idx::nu] = dyn.nu_dot;
   dydt[idx::w_diss] = dyn.dissipation;
   dydt[idx::psi] = dyn.psi_dot;
+}
+
+void jacobian_difference_steps(const Model& model, const StateVector& y, StateVector& max_step) {
+  max_step.fill(0.0);
+  const ContactKinematics k = contact_kinematics(model, velocity3(y), angular_velocity(y));
+  const double width = 1e-4 * std::max(k.v_t.norm(), model.regularization_speed);
+  max_step[idx::u] = max_step[idx::u + 1] = width;
+  const double R = model.top.tip_radius;
+  if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
 }
 
 void model_derivative(const Model& model, const StateVector& y, StateVector& dydt) {

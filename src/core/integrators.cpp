@@ -232,15 +232,17 @@ class Rosenbrock4Stepper : public Stepper {
   struct Jacobian {
     Rosenbrock4Stepper* self;
     void operator()(const UVector& x, UMatrix& jac, double, UVector& dfdt) const {
-      StateVector xs, f_plus, f_minus;
+      StateVector xs, f_plus, f_minus, bound{};
       std::copy(x.begin(), x.end(), xs.begin());
+      if (self->difference_steps_) self->difference_steps_(xs, bound);
       for (std::size_t j = 0; j < idx::size; ++j) {
         // Nothing depends on the position or the dissipated work: their columns are zero.
         if (j == idx::x || j == idx::x + 1 || j == idx::w_diss || j == idx::psi) {
           for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = 0.0;
           continue;
         }
-        const double h = kJacobianStep * std::max(std::abs(xs[j]), 1e-3);
+        double h = kJacobianStep * std::max(std::abs(xs[j]), 1e-3);
+        if (bound[j] > 0.0 && bound[j] < h) h = bound[j];
         const double saved = xs[j];
         xs[j] = saved + h;
         self->system_(xs, f_plus);
@@ -255,9 +257,10 @@ class Rosenbrock4Stepper : public Stepper {
   };
 
  public:
-  Rosenbrock4Stepper(const IntegratorSettings& s, System system)
+  Rosenbrock4Stepper(const IntegratorSettings& s, System system, DifferenceSteps difference_steps = {})
       : settings_(s),
         system_(std::move(system)),
+        difference_steps_(std::move(difference_steps)),
         dense_{Dense(Controller(s.atol, s.rtol, s.max_dt)), Dense(Controller(s.atol, s.rtol, s.max_dt))},
         x_(idx::size) {}
 
@@ -312,6 +315,7 @@ class Rosenbrock4Stepper : public Stepper {
 
   IntegratorSettings settings_;
   System system_;
+  DifferenceSteps difference_steps_;
   mutable Dense dense_[2];
   int active_ = 0;
   UVector x_;
@@ -335,7 +339,8 @@ class SwitchingStepper : public Stepper {
   static constexpr std::uint64_t kStiffWindow = 16;  // rosenbrock4 steps between checks of its rate
 
  public:
-  SwitchingStepper(const IntegratorSettings& s, System system) : explicit_(s, system), stiff_(s, std::move(system)) {}
+  SwitchingStepper(const IntegratorSettings& s, System system, DifferenceSteps difference_steps)
+      : explicit_(s, system), stiff_(s, std::move(system), std::move(difference_steps)) {}
 
   void reset(const StateVector& y, double t) override {
     stiff_active_ = false;
@@ -426,7 +431,8 @@ class SwitchingStepper : public Stepper {
 
 }  // namespace
 
-std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system) {
+std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
+                                      DifferenceSteps difference_steps) {
   switch (settings.method) {
     case Method::euler:
     case Method::semi_implicit_euler:
@@ -435,9 +441,9 @@ std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System
     case Method::dopri5:
       return std::make_unique<Dopri5Stepper>(settings, std::move(system));
     case Method::rosenbrock4:
-      return std::make_unique<Rosenbrock4Stepper>(settings, std::move(system));
+      return std::make_unique<Rosenbrock4Stepper>(settings, std::move(system), std::move(difference_steps));
     case Method::switching:
-      return std::make_unique<SwitchingStepper>(settings, std::move(system));
+      return std::make_unique<SwitchingStepper>(settings, std::move(system), std::move(difference_steps));
   }
   throw std::invalid_argument("make_stepper: unknown method");
 }

@@ -24,9 +24,9 @@ double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_
 }  // namespace
 
 Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
-  stepper_ = make_stepper(scene_.integrator, [this](const StateVector& y, StateVector& dydt) {
-    model_derivative(model_, y, dydt);
-  });
+  stepper_ = make_stepper(
+      scene_.integrator, [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, y, dydt); },
+      [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, y, h); });
   reset();
 }
 

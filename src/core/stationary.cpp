@@ -58,26 +58,52 @@ std::vector<SlipRoot> slip_roots(const FrictionLaw& law, double tan_alpha) {
 
 double critical_inclination(const FrictionLaw& law) { return std::atan(max_friction_coefficient(law)); }
 
+namespace {
+
+// Lowest stable root and the next unstable one above it; no allocation for the analytic laws
+// (the adiabatic right-hand side calls this every evaluation).
+bool stable_branch(const FrictionLaw& law, double tan_alpha, double& s_stable, double& s_unstable) {
+  const double t = std::abs(tan_alpha);
+  s_unstable = -1.0;
+  if (law.kind == FrictionLawKind::paper && friction_coefficient(law, 0.0) <= t) {
+    const double disc = 1.0 - t / law.mu_c;
+    if (disc < 0.0) return false;
+    const double q = std::sqrt(disc);
+    s_stable = law.s_c * (1.0 - q);
+    if (q > 0.0 && law.s_c * (1.0 + q) <= 1.0) s_unstable = law.s_c * (1.0 + q);
+    return q > 0.0 || t == 0.0;  // at alpha = alpha_c the two roots merge: marginal, not stable
+  }
+  const auto roots = slip_roots(law, tan_alpha);
+  auto stable = std::find_if(roots.begin(), roots.end(), [](const SlipRoot& r) { return r.stable; });
+  if (stable == roots.end()) return false;
+  s_stable = stable->s;
+  auto unstable = std::find_if(stable, roots.end(), [](const SlipRoot& r) { return !r.stable; });
+  if (unstable != roots.end()) s_unstable = unstable->s;
+  return true;
+}
+
+}  // namespace
+
 StationaryState stationary_state(const Model& model, double spin) {
   StationaryState st;
   const double R = model.top.tip_radius;
   const double f = model.top.com_offset;
   const double alpha = model.plane.inclination;
-  std::ostringstream why;
   if (f <= 0.0) {
+    std::ostringstream why;  // messages are built only on the failure paths: the adiabatic RHS calls this
     why << "com_offset f = " << f << " <= 0: the stationary solver covers ordinary tops (f > 0) only";
     st.reason = why.str();
     return st;
   }
   if (R * std::abs(std::sin(alpha)) > f) {
+    std::ostringstream why;
     why << "R sin(alpha) = " << R * std::abs(std::sin(alpha)) << " m exceeds f = " << f
         << " m: the centre of mass cannot sit above the contact point, no stationary state exists";
     st.reason = why.str();
     return st;
   }
-  const auto roots = slip_roots(model.friction, std::tan(alpha));
-  auto stable = std::find_if(roots.begin(), roots.end(), [](const SlipRoot& r) { return r.stable; });
-  if (stable == roots.end()) {
+  if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
+    std::ostringstream why;
     why << "tan(alpha) = " << std::tan(std::abs(alpha)) << " has no stable balance mu(s*) = tan(alpha) (max mu = "
         << max_friction_coefficient(model.friction) << ", alpha_c = " << critical_inclination(model.friction)
         << " rad): the top slides downhill";
@@ -85,9 +111,6 @@ StationaryState stationary_state(const Model& model, double spin) {
     return st;
   }
   st.exists = true;
-  st.slip = stable->s;
-  auto unstable = std::find_if(stable, roots.end(), [](const SlipRoot& r) { return !r.stable; });
-  st.slip_unstable = unstable == roots.end() ? -1.0 : unstable->s;
 
   // f_hat* = -(R/f) n + f_g g_hat puts the centre of mass vertically above the contact point.
   const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
