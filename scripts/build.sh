@@ -32,5 +32,4 @@ if [ -f "$cache" ]; then
 fi
 
 top_sim_log "catkin_make in $TOP_SIM_WS (-j$TOP_SIM_JOBS) $*"
-cd "$TOP_SIM_WS"
-catkin_make -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 -j"$TOP_SIM_JOBS" "$@"
+top_sim_catkin_make -j"$TOP_SIM_JOBS" "$@"

@@ -19,6 +19,9 @@ TOP_SIM_PACKAGES=(
   libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
 )
 
+# Every catkin_make call gets the same CMake arguments: catkin_make re-runs cmake whenever they change.
+TOP_SIM_CMAKE_ARGS=(-DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3)
+
 top_sim_log() { printf '[top_sim] %s\n' "$*" >&2; }
 top_sim_die() { printf '[top_sim] error: %s\n' "$*" >&2; exit 1; }
 
@@ -39,4 +42,9 @@ top_sim_missing_packages() {
   for p in "${TOP_SIM_PACKAGES[@]}"; do
     dpkg-query -W -f='${db:Status-Abbrev}\n' "$p" 2>/dev/null | grep -q '^ii' || echo "$p"
   done
+}
+
+# catkin_make in the workspace with the project's CMake arguments; extra arguments (targets, -jN) follow.
+top_sim_catkin_make() {
+  (cd "$TOP_SIM_WS" && catkin_make "${TOP_SIM_CMAKE_ARGS[@]}" "$@")
 }

@@ -21,11 +21,10 @@ fi
 
 results=$TOP_SIM_WS/build/test_results
 rm -rf "$results"   # only this run's results are counted
-cd "$TOP_SIM_WS"
 
 if [ "$status" -eq 0 ]; then
   top_sim_log "building the tests"
-  if ! catkin_make -j"$TOP_SIM_JOBS" tests; then
+  if ! top_sim_catkin_make -j"$TOP_SIM_JOBS" tests; then
     top_sim_log "BUILD FAILED (tests)"; status=1
   fi
 fi
@@ -34,7 +33,8 @@ if [ "$status" -eq 0 ]; then
   # One test at a time (-j1): tests share 2 cores, ROS masters and LCM channels. The timeout stops a hung test.
   top_sim_log "running the tests"
   set +e
-  timeout --kill-after=30 "${TOP_SIM_TEST_TIMEOUT:-3000}" catkin_make -j1 run_tests
+  timeout --kill-after=30 "${TOP_SIM_TEST_TIMEOUT:-3000}" bash -c \
+    'source "$1/scripts/lib.sh" && top_sim_catkin_make -j1 run_tests' _ "$TOP_SIM_REPO"
   rc=$?
   set -e
   # run_tests exits 0 even when tests fail (the verdict comes from the XML below); non-zero means it broke.
