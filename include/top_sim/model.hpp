@@ -47,7 +47,7 @@ enum class ModelKind { full, adiabatic };
 
 // Thresholds of the regime classification (physics.md section 8).
 struct RegimeThresholds {
-  double nutation_angle = 2.0e-3;      // angle(omega, f_hat) above which the top nutates [rad]
+  double nutation_angle = 1.0e-3;      // angle(omega, f_hat) above which the top nutates [rad] (physics.md: aligned to 1e-3)
   double nutation_rate = 2.0e-2;       // |d angle / dt| above which the top nutates [rad/s]
   double sleep_turn_rate = 1.0e-3;     // |a_cm| / |v_cm| below which the path is straight [1/s]
   double sleep_acceleration = 1.0e-7;  // |a_cm| below which a (slow or resting) top is asleep [m/s^2]

@@ -22,6 +22,9 @@ struct RegimeIndicators {
 
 RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn);
 
-Regime classify(const RegimeThresholds& thresholds, const RegimeIndicators& ind, bool fault);
+// `previous` adds hysteresis: a sleeping top stays asleep until its path turns at twice the threshold,
+// so the regime does not flicker while the last precession dies out.
+Regime classify(const RegimeThresholds& thresholds, const RegimeIndicators& ind, bool fault,
+                Regime previous = Regime::nutating);
 
 }  // namespace top_sim

@@ -46,6 +46,7 @@ class Simulator {
   void apply_now(const Command& c);
   void apply_pending();
   bool check_last_step();
+  void update_regime();
 
   Scene scene_;
   Model model_;
@@ -61,10 +62,11 @@ class Simulator {
   ContactFault fault_ = ContactFault::none;
   std::string fault_message_;
   ContactMargins last_margins_;
+  Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
 };
 
 // Snapshot of an arbitrary state of a model (used by the Simulator and by tools).
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary);
+                       const StationaryState& stationary, Regime previous = Regime::nutating);
 
 }  // namespace top_sim

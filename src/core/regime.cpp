@@ -59,13 +59,15 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   return ind;
 }
 
-Regime classify(const RegimeThresholds& th, const RegimeIndicators& ind, bool fault) {
+Regime classify(const RegimeThresholds& th, const RegimeIndicators& ind, bool fault, Regime previous) {
   if (fault) return Regime::contact_fault;
   // A sliding top keeps a steady omega-f_hat offset from the friction torque: sliding outranks nutation.
   if (ind.runaway) return Regime::sliding;
   if (ind.nutation_angle > th.nutation_angle || std::abs(ind.nutation_rate) > th.nutation_rate)
     return Regime::nutating;
-  const bool straight = ind.acceleration <= th.sleep_acceleration || ind.acceleration <= th.sleep_turn_rate * ind.speed;
+  const double k = previous == Regime::sleeping ? 2.0 : 1.0;
+  const bool straight =
+      ind.acceleration <= k * th.sleep_acceleration || ind.acceleration <= k * th.sleep_turn_rate * ind.speed;
   return straight ? Regime::sleeping : Regime::precessing;
 }
 

@@ -183,10 +183,13 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
              : kind == "coulomb"    ? FrictionLawKind::coulomb
                                     : FrictionLawKind::table;
   v_eps = s.number("regularization_speed", 1.0e-9, positive, "> 0 [m/s]");
+  static const char* const accepted[] = {"mu_c, s_c", "mu0, k, s0", "mu", "points"};  // by FrictionLawKind
   auto only_for = [&](const char* key, FrictionLawKind owner) {
     if (law.kind != owner && s.has(key))
       throw SceneError(file, join(s.path(), key),
-                       std::string("is not a parameter of law ") + kind + " (it belongs to law " + to_string(owner) + ")");
+                       show(s.raw(key)) + " is not a parameter of law " + kind + " (it belongs to law " +
+                           to_string(owner) + "); law " + kind + " takes: " +
+                           accepted[static_cast<int>(law.kind)] + ", regularization_speed");
   };
   only_for("mu_c", FrictionLawKind::paper);
   only_for("s_c", FrictionLawKind::paper);

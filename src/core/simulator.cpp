@@ -42,6 +42,7 @@ void Simulator::reset() {
   fault_ = ContactFault::none;
   fault_message_.clear();
   max_residual_ = 0.0;
+  regime_ = Regime::nutating;
   restart_stepper();
 }
 
@@ -113,6 +114,18 @@ void Simulator::advance_to(double t_target) {
     t_ = t_stop;
   }
   apply_pending();  // events due exactly at t_target take effect now, so the state shows them
+  update_regime();
+}
+
+void Simulator::update_regime() {
+  if (fault_ != ContactFault::none) {
+    regime_ = Regime::contact_fault;
+    return;
+  }
+  Dynamics dyn;
+  evaluate_dynamics(model_, y_, dyn);
+  const RegimeIndicators ind = model_.kind == ModelKind::adiabatic ? RegimeIndicators{} : regime_indicators(model_, y_, dyn);
+  regime_ = classify(model_.regime, ind, false, regime_);
 }
 
 // Checks the accepted step for faults; on one, moves the state to the located fault instant.
@@ -155,7 +168,7 @@ bool Simulator::check_last_step() {
 StationaryState Simulator::stationary() const { return stationary_state(model_, shell_spin(y_)); }
 
 Snapshot Simulator::snapshot() const {
-  Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary());
+  Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary(), regime_);
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
     s.fault_message = fault_message_;
@@ -165,7 +178,7 @@ Snapshot Simulator::snapshot() const {
 }
 
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary) {
+                       const StationaryState& stationary, Regime previous) {
   Snapshot s;
   Dynamics dyn;
   evaluate_dynamics(model, y, dyn);
@@ -207,7 +220,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.indicators = regime_indicators(model, y, dyn);
   if (model.kind == ModelKind::adiabatic) s.indicators = RegimeIndicators{};
   s.fault = model.kind == ModelKind::full ? fault_of(dyn.margins) : ContactFault::none;
-  s.regime = classify(model.regime, s.indicators, s.fault != ContactFault::none);
+  s.regime = classify(model.regime, s.indicators, s.fault != ContactFault::none, previous);
   s.energy = mechanical_energy(model, y);
   s.dissipated_work = y[idx::w_diss];
   s.energy_balance_residual = balance.residual(model, y);

@@ -104,10 +104,9 @@ TEST(SceneErrors, ParameterOfAnotherFrictionLaw) {
   EXPECT_EQ(msg.rfind("mixed_law.yaml: friction.mu_c: ", 0), 0u) << msg;
   EXPECT_NE(msg.find("law coulomb"), std::string::npos) << msg;
   EXPECT_NE(msg.find("law paper"), std::string::npos) << msg;
-  // FIXME(core): docs/interfaces.md requires the value too; src/core/scene.cpp read_friction_law's only_for()
-  // message ("is not a parameter of law coulomb (it belongs to law paper)") omits '0.25' and the keys law coulomb
-  // takes (mu). Left failing for the core owner.
+  // docs/interfaces.md: the message names the value too, and the keys the chosen law does take.
   EXPECT_NE(msg.find("0.25"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("takes: mu,"), std::string::npos) << msg;
 }
 
 TEST(SceneErrors, BadTablePoints) {
