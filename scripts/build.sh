@@ -33,3 +33,15 @@ fi
 
 top_sim_log "catkin_make in $TOP_SIM_WS (-j$TOP_SIM_JOBS) $*"
 top_sim_catkin_make -j"$TOP_SIM_JOBS" "$@"
+
+# catkin freezes the environment of run_tests (build/catkin_generated/setup_cached.sh) at configure time,
+# before the first build creates the generated Python messages; without a second configure the Python
+# rostests cannot import top_sim.msg.
+cached=$TOP_SIM_WS/build/catkin_generated/setup_cached.sh
+for pydir in "$TOP_SIM_WS"/devel/lib/python3*/dist-packages; do
+  if [ -d "$pydir" ] && [ -f "$cached" ] && ! grep -qF "$pydir" "$cached"; then
+    top_sim_log "configuring again so that run_tests sees $pydir"
+    top_sim_catkin_make --force-cmake -j"$TOP_SIM_JOBS" "$@"
+    grep -qF "$pydir" "$cached" || top_sim_die "$cached still lacks $pydir after a second configure"
+  fi
+done
