@@ -44,6 +44,7 @@ void Simulator::reset() {
   max_residual_ = 0.0;
   regime_ = Regime::nutating;
   restart_stepper();
+  update_regime();
 }
 
 // After any jump of the state or the model: re-base the energy balance and check the new state for faults.
@@ -169,6 +170,7 @@ StationaryState Simulator::stationary() const { return stationary_state(model_, 
 
 Snapshot Simulator::snapshot() const {
   Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary(), regime_);
+  s.regime = regime_;  // classified once, at the end of the last advance (with its hysteresis)
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
     s.fault_message = fault_message_;
