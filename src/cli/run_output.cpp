@@ -8,12 +8,7 @@
 namespace top_sim {
 
 namespace {
-// CPU time of this thread: tools run several simulations in parallel threads.
-double cpu_now() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
+
 
 std::string num(double v) {
   if (!std::isfinite(v)) return "null";
@@ -37,6 +32,12 @@ std::string quoted(const std::string& text) {
 }
 }  // namespace
 
+double thread_cpu_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
+}
+
 double travel_angle(double dx, double dy) { return std::atan2(-dy, dx); }
 
 RunResult run(Simulator& sim, const RunOptions& opt) {
@@ -44,7 +45,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   const double t0 = sim.time();
   const double t_end = t0 + opt.duration;
   const double t_mark = t0 + 0.8 * opt.duration;
-  const double cpu0 = cpu_now();
+  const double cpu0 = thread_cpu_seconds();
   std::optional<Eigen::Vector2d> mark;
 
   auto sample = [&](double t) {
@@ -69,7 +70,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
     mark = position(sim.state());
   }
   sim.advance_to(t_end);
-  r.cpu_seconds = cpu_now() - cpu0;
+  r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.sim_seconds = sim.time() - t0;
   r.final = sim.snapshot();
   r.stats = sim.stats();

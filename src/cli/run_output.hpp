@@ -30,6 +30,9 @@ struct RunResult {
 // Advances the simulator from its current time by options.duration.
 RunResult run(Simulator& sim, const RunOptions& options);
 
+// CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
+double thread_cpu_seconds();
+
 // Angle from h towards downhill of a displacement (dx, dy) in the plane frame, in [-pi, pi].
 double travel_angle(double dx, double dy);
 

@@ -34,13 +34,6 @@ YAML::Node load_named(const std::string& name, const std::string& config_dir, co
   }
 }
 
-// CPU time of the calling thread: std::clock() would count every worker of a parallel sweep.
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
 double wrapped_difference(double a, double b) { return std::remainder(a - b, 2.0 * M_PI); }
 
 std::string num(double v) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "run_output.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
@@ -22,12 +23,6 @@
 namespace {
 
 using namespace top_sim;
-
-double cpu_now() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
 
 double wrap(double a) { return std::remainder(a, 2.0 * M_PI); }
 
@@ -50,11 +45,11 @@ Outcome run_scene(const Scene& scene, double T, bool timed = true) {
   double total = 0.0;
   do {
     Simulator sim(scene);
-    const double c0 = cpu_now();
+    const double c0 = thread_cpu_seconds();
     sim.advance_to(0.8 * T);
     const Eigen::Vector2d mark = position(sim.state());
     sim.advance_to(T);
-    total += cpu_now() - c0;
+    total += thread_cpu_seconds() - c0;
     ++reps;
     if (reps > 1) continue;
     const Snapshot s = sim.snapshot();
