@@ -165,7 +165,6 @@ class TopSimNode {
     reconfigure_->updateConfig(config_);
     reconfigure_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
 
-    timer_ = nh_.createWallTimer(ros::WallDuration(1.0 / publish_rate_), &TopSimNode::tick, this);
     // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.
     reconfigure_timer_ = nh_.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
       if (!config_dirty_) return;
@@ -178,6 +177,23 @@ class TopSimNode {
     return true;
   }
 
+  // The publish loop on the main thread: the callbacks that arrived (commands first, so the tick right after
+  // applies and publishes them), one tick, then sleep to the next period. (A WallTimer hands every tick from
+  // roscpp's timer thread to the spinner: at 1 kHz those context switches cost more CPU than the simulation.)
+  void run() {
+    ros::WallTime next = ros::WallTime::now();
+    while (ros::ok()) {
+      ros::spinOnce();
+      tick();
+      next += ros::WallDuration(1.0 / publish_rate_);
+      const ros::WallTime now = ros::WallTime::now();
+      if (next < now)
+        next = now;  // fell behind (CPU starved): do not burst to catch up
+      else
+        ros::WallTime::sleepUntil(next);
+    }
+  }
+
  private:
   // ---- pacing ---------------------------------------------------------------------------------------------
   void anchor() {
@@ -185,7 +201,7 @@ class TopSimNode {
     anchor_sim_ = sim_->time();
   }
 
-  void tick(const ros::WallTimerEvent&) {
+  void tick() {
     const double wall = ros::WallTime::now().toSec();
     const double cpu0 = thread_cpu_seconds();
     const std::size_t steps0 = sim_->stats().steps;
@@ -470,8 +486,7 @@ class TopSimNode {
     }
     if (level & 8) {
       if (std::isfinite(cfg.publish_rate) && cfg.publish_rate > 0.0 && cfg.publish_rate <= kMaxPublishRate) {
-        publish_rate_ = cfg.publish_rate;
-        timer_.setPeriod(ros::WallDuration(1.0 / publish_rate_));
+        publish_rate_ = cfg.publish_rate;  // run() reads it every period
       } else {
         ROS_WARN("top_sim_node: %s", rate_error("publish_rate", cfg.publish_rate, "in (0, 10000] Hz").c_str());
       }
@@ -495,7 +510,6 @@ class TopSimNode {
   ros::Publisher state_pub_, marker_pub_, path_pub_, clock_pub_;
   ros::Subscriber inclination_sub_, spin_sub_, command_sub_;
   ros::ServiceServer reset_srv_, pause_srv_;
-  ros::WallTimer timer_;
   ros::WallTimer reconfigure_timer_;
   bool config_dirty_ = false;
   tf2_ros::TransformBroadcaster tf_;
@@ -527,6 +541,6 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "top_sim_node");
   TopSimNode node;
   if (!node.init()) return 2;
-  ros::spin();
+  node.run();
   return 0;
 }
