@@ -22,6 +22,7 @@ struct FrictionLaw {
 };
 
 const char* to_string(FrictionLawKind kind);
+bool parse_friction_law_kind(const std::string& name, FrictionLawKind& out);
 
 // mu(s) of the law before the clamp; may be negative.
 double raw_friction_coefficient(const FrictionLaw& law, double s);

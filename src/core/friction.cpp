@@ -17,6 +17,16 @@ const char* to_string(FrictionLawKind kind) {
   return "?";
 }
 
+bool parse_friction_law_kind(const std::string& name, FrictionLawKind& out) {
+  for (FrictionLawKind k : {FrictionLawKind::paper, FrictionLawKind::linearized, FrictionLawKind::coulomb,
+                            FrictionLawKind::table})
+    if (name == to_string(k)) {
+      out = k;
+      return true;
+    }
+  return false;
+}
+
 double raw_friction_coefficient(const FrictionLaw& law, double s) {
   switch (law.kind) {
     case FrictionLawKind::paper:

@@ -178,10 +178,7 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
 static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps) {
   FrictionLaw law;
   const std::string kind = s.word("law", "paper", {"paper", "linearized", "coulomb", "table"});
-  law.kind = kind == "paper" ? FrictionLawKind::paper
-             : kind == "linearized" ? FrictionLawKind::linearized
-             : kind == "coulomb"    ? FrictionLawKind::coulomb
-                                    : FrictionLawKind::table;
+  parse_friction_law_kind(kind, law.kind);  // word() admitted only the four names
   v_eps = s.number("regularization_speed", 1.0e-9, positive, "> 0 [m/s]");
   static const char* const accepted[] = {"mu_c, s_c", "mu0, k, s0", "mu", "points"};  // by FrictionLawKind
   auto only_for = [&](const char* key, FrictionLawKind owner) {

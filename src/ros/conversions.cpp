@@ -173,16 +173,6 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   out.markers.push_back(vel);
 }
 
-bool friction_kind(const std::string& name, top_sim::FrictionLawKind& kind) {
-  using K = top_sim::FrictionLawKind;
-  for (K k : {K::paper, K::linearized, K::coulomb, K::table})
-    if (name == top_sim::to_string(k)) {
-      kind = k;
-      return true;
-    }
-  return false;
-}
-
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {
   top_sim::Command c;
   error.clear();
@@ -192,7 +182,7 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
   if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
   if (msg.set_friction) {
     top_sim::FrictionLaw law;
-    if (!friction_kind(msg.friction_law, law.kind)) {
+    if (!top_sim::parse_friction_law_kind(msg.friction_law, law.kind)) {
       error = "friction_law = '" + msg.friction_law + "': must be one of paper, linearized, coulomb, table";
       return c;
     }

@@ -39,7 +39,4 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
 // The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`.
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error);
 
-// Friction law name -> kind; false for an unknown name.
-bool friction_kind(const std::string& name, top_sim::FrictionLawKind& kind);
-
 }  // namespace top_sim_ros

@@ -445,7 +445,7 @@ class TopSimNode {
     if (level & 16) {
       top_sim::FrictionLaw law = sim_->model().friction;
       top_sim::FrictionLawKind kind;
-      if (!top_sim_ros::friction_kind(cfg.friction_law, kind)) {
+      if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
         ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be paper, linearized, coulomb or table",
                  cfg.friction_law.c_str());
         cfg = config_;
