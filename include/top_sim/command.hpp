@@ -16,8 +16,12 @@ struct Command {
   std::optional<double> rotor_spin;      // absolute rotor spin Omega [rad/s]
   std::optional<double> rotor_coupling;  // bearing coupling c [N m s]
   std::optional<FrictionLaw> friction;   // replaces the friction law
+  std::optional<double> static_friction; // mu_s (friction.static), >= mu(0) of the law in force
+  std::optional<double> restitution;     // e_N (contact.restitution) in [0, 1]
 
-  bool empty() const { return !inclination && !spin && !rotor_spin && !rotor_coupling && !friction; }
+  bool empty() const {
+    return !inclination && !spin && !rotor_spin && !rotor_coupling && !friction && !static_friction && !restitution;
+  }
 };
 
 // Empty when the command can be applied to this model, else "field = value: allowed range".

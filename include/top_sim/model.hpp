@@ -4,6 +4,7 @@
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 #include <cmath>
+#include <optional>
 
 #include "top_sim/friction.hpp"
 
@@ -53,6 +54,14 @@ struct RegimeThresholds {
   double sleep_acceleration = 1.0e-7;  // |a_cm| below which a (slow or resting) top is asleep [m/s^2]
 };
 
+// Contact-mode settings of physics.md section 9 (scene keys friction.static and contact.*).
+struct ContactSettings {
+  std::optional<double> static_friction;  // mu_s when given; else mu(0) (0 with the static normal force)
+  double restitution = 0.0;               // e_N in [0, 1]
+  double stick_speed = 1.0e-6;            // v_stick [m/s]
+  double settle_speed = 1.0e-5;           // v_settle [m/s]
+};
+
 struct Model {
   Top top;
   Plane plane;
@@ -61,7 +70,11 @@ struct Model {
   NormalForceModel normal_force = NormalForceModel::constrained;
   ModelKind kind = ModelKind::full;
   RegimeThresholds regime;
+  ContactSettings contact;
 };
+
+// mu_s in force: the given value, else mu(0) of the law; 0 where the paper's permanent slipping contact holds.
+double static_friction(const Model& model);
 
 const char* to_string(NormalForceModel m);
 const char* to_string(ModelKind k);

@@ -1,12 +1,18 @@
-// Owns time, the stepper, scripted events and pending commands; advances one top.
+// Owns time, the steppers, the contact mode, scripted events and pending commands; advances one top.
+//
+// Threading contract: one thread owns a Simulator and calls everything but submit(); submit() may be called from
+// any thread (commands enter through one locked queue and are applied at the next step boundary).
 #pragma once
 
+#include <array>
+#include <limits>
 #include <memory>
 #include <mutex>
 #include <string>
 #include <vector>
 
 #include "top_sim/command.hpp"
+#include "top_sim/contact_modes.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/scene.hpp"
@@ -18,10 +24,14 @@ namespace top_sim {
 class Simulator {
  public:
   explicit Simulator(const Scene& scene);
+  Simulator(const Simulator&) = delete;  // the steppers call back into this object
+  Simulator& operator=(const Simulator&) = delete;
 
-  // Integrates to simulated time t (>= time()); applies due events and pending commands at step
-  // boundaries; stops at a contact fault (time() then stays at the fault).
-  void advance_to(double t);
+  // Integrates to simulated time t (>= time()); applies due events and pending commands at step boundaries;
+  // switches contact modes at located events; stops at a contact fault (time() then stays at the fault).
+  // With a finite budget (wall-clock seconds) it returns after the first step that exhausts it: false when it
+  // stopped short of t (time() < t, no fault), true otherwise. The state is always a consistent step boundary.
+  bool advance_to(double t, double budget_seconds = std::numeric_limits<double>::infinity());
 
   // Validates and queues a command for the next step boundary; returns "" or the error message.
   std::string submit(const Command& command);
@@ -34,23 +44,42 @@ class Simulator {
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
   Snapshot snapshot() const;
-  const StepperStats& stats() const { return stepper_->stats; }
+  const StepperStats& stats() const { return stats_; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
   // The analytic sleeping state for the current alpha and shell spin.
   StationaryState stationary() const;
   double max_energy_residual() const { return max_residual_; }
 
+  ContactMode contact_mode() const { return mode_; }
+  // Simulated seconds spent in each contact mode since the last reset (index: ContactMode).
+  const std::array<double, kContactModeCount>& mode_seconds() const { return mode_seconds_; }
+  // Mode switches since the last call (the caller keeps them if it needs the history); bounded by
+  // kMaxPendingSwitches, the count of all switches since the reset is mode_switch_count().
+  std::vector<ModeSwitch> take_mode_switches();
+  std::uint64_t mode_switch_count() const { return switch_count_; }
+  static constexpr std::size_t kMaxPendingSwitches = 100000;
+
  private:
-  void restart_stepper();
+  struct Impl;
+  void restart_stepper(bool rebase_energy);
   void apply_now(const Command& c);
   void apply_pending();
-  bool check_last_step();
+  bool step_once(double t_stop);
+  bool check_events();
+  void enter_mode(ContactMode mode, ModeSwitchKind kind);
+  void fail(ContactFault fault, const std::string& message);
   void update_regime();
+  void select_stepper();
+  Stepper& stepper() { return layer_active_ ? *layer_stepper_ : *stepper_; }
+  const Stepper& stepper() const { return layer_active_ ? *layer_stepper_ : *stepper_; }
 
   Scene scene_;
   Model model_;
-  std::unique_ptr<Stepper> stepper_;
+  std::unique_ptr<Stepper> stepper_;        // the scene's method
+  std::unique_ptr<Stepper> layer_stepper_;  // rosenbrock4 across the stiff slip-onset layer (physics.md section 9)
+  bool layer_active_ = false;
+  StepperStats stats_, stats_base_;         // totals over both steppers
   StateVector y_{};
   double t_ = 0.0;
   double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it
@@ -61,12 +90,21 @@ class Simulator {
   double max_residual_ = 0.0;
   ContactFault fault_ = ContactFault::none;
   std::string fault_message_;
-  ContactMargins last_margins_;
   Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
+
+  ContactMode mode_ = ContactMode::slipping;
+  std::array<bool, 2> armed_{};       // lift and transfer margins have been > 0 since the mode began
+  double mode_since_ = 0.0;
+  std::array<double, kContactModeCount> mode_seconds_{};
+  std::vector<ModeSwitch> switches_;
+  std::uint64_t switch_count_ = 0;
+  int instant_switches_ = 0;          // consecutive switches without time advancing (Zeno guard)
+  double last_switch_t_ = -1.0;
 };
 
 // Snapshot of an arbitrary state of a model (used by the Simulator and by tools).
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary, Regime previous = Regime::nutating);
+                       const StationaryState& stationary, Regime previous = Regime::nutating,
+                       ContactMode mode = ContactMode::slipping);
 
 }  // namespace top_sim

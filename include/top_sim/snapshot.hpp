@@ -6,6 +6,7 @@
 #include <string>
 
 #include "top_sim/contact.hpp"
+#include "top_sim/contact_modes.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/regime.hpp"
 #include "top_sim/state.hpp"
@@ -38,6 +39,8 @@ struct Snapshot {
   double phi_star = 0.0;          // meaningful only with has_stationary_state
   RegimeIndicators indicators;
   Regime regime = Regime::nutating;
+  ContactMode contact_mode = ContactMode::slipping;  // physics.md section 9, separate from the regime
+  double gap = 0.0;               // height of the tip sphere above the plane [m], 0 in contact
   double energy = 0.0;
   double dissipated_work = 0.0;
   double energy_balance_residual = 0.0;
