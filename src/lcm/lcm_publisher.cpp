@@ -23,6 +23,15 @@ int8_t regime_code(top_sim::Regime r) {
   }
   return top_sim::top_state_t::CONTACT_FAULT;
 }
+
+int8_t contact_mode_code(top_sim::ContactMode m) {
+  switch (m) {
+    case top_sim::ContactMode::slipping: return top_sim::top_state_t::SLIPPING;
+    case top_sim::ContactMode::rolling: return top_sim::top_state_t::ROLLING;
+    case top_sim::ContactMode::flight: return top_sim::top_state_t::FLIGHT;
+  }
+  return top_sim::top_state_t::SLIPPING;
+}
 }  // namespace
 
 void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out) {
@@ -50,6 +59,9 @@ void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_st
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;
   out.regime = regime_code(s.regime);
+  out.contact_mode = contact_mode_code(s.contact_mode);
+  out.contact_mode_name = top_sim::to_string(s.contact_mode);
+  out.gap = s.gap;
   out.energy = s.energy;
   out.dissipated_work = s.dissipated_work;
   out.energy_balance_residual = s.energy_balance_residual;

@@ -53,7 +53,7 @@ double arrow_length(double value, double reference, double max_len) {
 
 bool all_finite(const top_sim::Snapshot& s) {
   const double scalars[] = {s.t, s.alpha, s.spin, s.rotor_spin, s.spin_phase, s.slip, s.mu, s.normal_force, s.phi,
-                            s.phi_star, s.energy, s.dissipated_work, s.energy_balance_residual};
+                            s.phi_star, s.gap, s.energy, s.dissipated_work, s.energy_balance_residual};
   for (double v : scalars)
     if (!std::isfinite(v)) return false;
   return finite3(s.tip_center) && finite3(s.com) && s.orientation.coeffs().allFinite() && finite3(s.com_velocity) &&
@@ -70,6 +70,15 @@ uint8_t regime_code(top_sim::Regime r) {
     case top_sim::Regime::contact_fault: return top_sim::TopState::CONTACT_FAULT;
   }
   return top_sim::TopState::CONTACT_FAULT;
+}
+
+uint8_t contact_mode_code(top_sim::ContactMode m) {
+  switch (m) {
+    case top_sim::ContactMode::slipping: return top_sim::TopState::SLIPPING;
+    case top_sim::ContactMode::rolling: return top_sim::TopState::ROLLING;
+    case top_sim::ContactMode::flight: return top_sim::TopState::FLIGHT;
+  }
+  return top_sim::TopState::SLIPPING;
 }
 
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
@@ -98,6 +107,9 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
   out.phi_star = s.phi_star;
   out.regime = regime_code(s.regime);
   out.regime_name = top_sim::to_string(s.regime);
+  out.contact_mode = contact_mode_code(s.contact_mode);
+  out.contact_mode_name = top_sim::to_string(s.contact_mode);
+  out.gap = s.gap;
   out.energy = s.energy;
   out.dissipated_work = s.dissipated_work;
   out.energy_balance_residual = s.energy_balance_residual;
@@ -145,7 +157,14 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * R;
   out.markers.push_back(tip);
 
-  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, 0.7f, 0.7f, 0.75f);
+  // Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
+  float br = 0.7f, bg = 0.7f, bb = 0.75f;
+  if (s.contact_mode == top_sim::ContactMode::rolling) {
+    br = 0.3f; bg = 0.8f; bb = 0.35f;
+  } else if (s.contact_mode == top_sim::ContactMode::flight) {
+    br = 0.35f; bg = 0.55f; bb = 0.95f;
+  }
+  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, br, bg, bb);
   body.scale.x = body.scale.y = 2.0 * body_r;
   body.scale.z = body_h;
   out.markers.push_back(body);
@@ -171,6 +190,13 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
   vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
   out.markers.push_back(vel);
+
+  // The contact mode as text above the top ("slipping", "rolling", "flight"), in the body's colour.
+  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, br, bg, bb);
+  mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, 0.5 * f + body_h + 0.02));
+  mode.scale.z = 0.01;  // text height [m]
+  mode.text = top_sim::to_string(s.contact_mode);
+  out.markers.push_back(mode);
 }
 
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {
@@ -180,6 +206,8 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
   if (msg.set_spin) c.spin = msg.spin;
   if (msg.set_rotor_spin) c.rotor_spin = msg.rotor_spin;
   if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
+  if (msg.set_static_friction) c.static_friction = msg.static_friction;  // validated by the core (>= mu(0))
+  if (msg.set_restitution) c.restitution = msg.restitution;              // validated by the core ([0, 1])
   if (msg.set_friction) {
     top_sim::FrictionLaw law;
     if (!top_sim::parse_friction_law_kind(msg.friction_law, law.kind)) {
@@ -204,7 +232,7 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
     }
     c.friction = law;
   }
-  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ... all false)";
+  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_restitution all false)";
   return c;
 }
 
