@@ -29,7 +29,7 @@ void rhs(benchmark::State& bs, NormalForceModel normal_force, ModelKind kind) {
   StateVector dydt{};
   for (auto _ : bs) {
     benchmark::DoNotOptimize(y);
-    model_derivative(scene.model, y, dydt);
+    model_derivative(scene.model, ContactMode::slipping, y, dydt);
     benchmark::DoNotOptimize(dydt);
   }
 }
@@ -99,7 +99,7 @@ void rosenbrock_step_asleep(benchmark::State& bs) {
   scene.integrator.max_dt = 1e-2;  // a fixed step size keeps each step's work the same
   Model model = scene.model;
   auto stepper = make_stepper(scene.integrator, [&model](const StateVector& y, StateVector& d) {
-    model_derivative(model, y, d);
+    model_derivative(model, ContactMode::slipping, y, d);
   });
   stepper->reset(initial_state(scene), 0.0);
   for (auto _ : bs) stepper->step(1e9);

@@ -1,4 +1,4 @@
-// Kinematics at the contact and contact faults (physics.md sections 3 and 4).
+// Kinematics at the contact and contact faults (physics.md sections 3, 4 and 9).
 #pragma once
 
 #include <Eigen/Core>
@@ -19,21 +19,12 @@ struct ContactKinematics {
 
 ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega);
 
-enum class ContactFault { none, lift_off, painleve, fallen, numerical };
+// Faults stop the top (physics.md sections 4 and 9); lift-off is not a fault but a switch to flight.
+enum class ContactFault { none, painleve, fallen, numerical };
 
 const char* to_string(ContactFault fault);
 
-// Margins whose sign change is a fault: each is > 0 while the contact is valid.
-struct ContactMargins {
-  double normal_force = 1.0;  // N (lift-off when < 0)
-  double painleve = 1.0;      // 1/m - f A, times m (Painleve when <= 0)
-  double tilt = 1.0;          // n . f_hat - cos(theta_max) (fallen when < 0)
-};
-
-// The first fault the margins show, in the order lift-off, Painleve, fallen.
-ContactFault fault_of(const ContactMargins& m);
-
-// One line for the user: what happened and the numbers that show it.
-std::string describe(ContactFault fault, const ContactMargins& m, double t);
+// One line for the user: what happened at time t and the number that shows it (the margin of the fault).
+std::string describe(ContactFault fault, double value, double t);
 
 }  // namespace top_sim

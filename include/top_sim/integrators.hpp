@@ -47,15 +47,26 @@ class Stepper {
   // State at t in [previous_time(), time()].
   virtual void state_at(double t, StateVector& y) const = 0;
   virtual double last_step_size() const = 0;
+  // Steps made by rosenbrock4 inside a stiff layer (see StiffLayer below); 0 for plain steppers.
+  virtual std::uint64_t layer_steps() const { return 0; }
   StepperStats stats;
 };
 
-// Upper bounds on the finite-difference steps of an approximate Jacobian (0 = no bound), from the model:
+// Upper bounds on the finite-difference steps of an approximate Jacobian (0 = no bound, < 0 = zero column):
 // a regularised friction kink of width v_eps must not be stepped across.
 using DifferenceSteps = std::function<void(const StateVector& y, StateVector& max_step)>;
 
-// `system` is called for every right-hand side; the stepper counts the calls.
+// True where the state lies in a stiff layer that rosenbrock4 must cross, whatever the scene's method (physics.md
+// section 9: slip onset). `inside` says whether the state was in the layer at the last check (for hysteresis).
+using StiffLayer = std::function<bool(const StateVector& y, bool inside)>;
+
+// First rosenbrock4 step on entering a stiff layer [s]: the layer's time scale is v_eps / (mu g) ~ 1e-10 s, and
+// the controller grows the step 5x per accepted step.
+constexpr double kLayerFirstStep = 1.0e-9;
+
+// `system` is called for every right-hand side; the stepper counts the calls. With `in_layer`, steps inside the
+// stiff layer are made by rosenbrock4 (the scene's rtol and atol).
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
-                                      DifferenceSteps difference_steps = {});
+                                      DifferenceSteps difference_steps = {}, StiffLayer in_layer = {});
 
 }  // namespace top_sim

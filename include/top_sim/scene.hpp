@@ -25,6 +25,8 @@ struct InitialConditions {
   Eigen::Vector2d angular_velocity_transverse = Eigen::Vector2d::Zero();  // world (x, y, 0) [rad/s]
   Eigen::Vector2d position = Eigen::Vector2d::Zero();
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();
+  double gap = 0.0;                   // height of the tip-sphere centre above R [m] (> 0: starts in flight)
+  double gap_rate = 0.0;              // its rate [m/s] (> 0: starts in flight)
   double rotor_spin = 0.0;            // absolute rotor spin Omega [rad/s] (top.rotor.spin)
 };
 

@@ -44,7 +44,7 @@ class Simulator {
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
   Snapshot snapshot() const;
-  const StepperStats& stats() const { return stats_; }
+  const StepperStats& stats() const { return stepper_->stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
   // The analytic sleeping state for the current alpha and shell spin.
@@ -53,33 +53,31 @@ class Simulator {
 
   ContactMode contact_mode() const { return mode_; }
   // Simulated seconds spent in each contact mode since the last reset (index: ContactMode).
-  const std::array<double, kContactModeCount>& mode_seconds() const { return mode_seconds_; }
-  // Mode switches since the last call (the caller keeps them if it needs the history); bounded by
-  // kMaxPendingSwitches, the count of all switches since the reset is mode_switch_count().
+  std::array<double, kContactModeCount> mode_seconds() const;
+  // Mode switches since the last call, in time order (the caller keeps them if it needs the history). At most
+  // kMaxPendingSwitches are held; mode_switch_count() counts all since the reset.
   std::vector<ModeSwitch> take_mode_switches();
   std::uint64_t mode_switch_count() const { return switch_count_; }
   static constexpr std::size_t kMaxPendingSwitches = 100000;
+  // Steps made by rosenbrock4 across the stiff slip-onset layer (included in stats()).
+  std::uint64_t layer_steps() const { return stepper_->layer_steps(); }
 
  private:
-  struct Impl;
   void restart_stepper(bool rebase_energy);
   void apply_now(const Command& c);
   void apply_pending();
-  bool step_once(double t_stop);
-  bool check_events();
-  void enter_mode(ContactMode mode, ModeSwitchKind kind);
+  bool check_step();
+  int fired(const ModeMargins& m, const StateVector& y) const;
+  void handle_event(int event, const ModeMargins& m);
+  void switch_mode(ContactMode mode, ModeSwitchKind kind);
+  void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
   void update_regime();
-  void select_stepper();
-  Stepper& stepper() { return layer_active_ ? *layer_stepper_ : *stepper_; }
-  const Stepper& stepper() const { return layer_active_ ? *layer_stepper_ : *stepper_; }
+  bool in_stiff_layer(const StateVector& y, bool inside) const;
 
   Scene scene_;
   Model model_;
-  std::unique_ptr<Stepper> stepper_;        // the scene's method
-  std::unique_ptr<Stepper> layer_stepper_;  // rosenbrock4 across the stiff slip-onset layer (physics.md section 9)
-  bool layer_active_ = false;
-  StepperStats stats_, stats_base_;         // totals over both steppers
+  std::unique_ptr<Stepper> stepper_;
   StateVector y_{};
   double t_ = 0.0;
   double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it
@@ -93,7 +91,8 @@ class Simulator {
   Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
 
   ContactMode mode_ = ContactMode::slipping;
-  std::array<bool, 2> armed_{};       // lift and transfer margins have been > 0 since the mode began
+  ModeMargins last_margins_;          // at the end of the last accepted step (or the restart)
+  bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
   double mode_since_ = 0.0;
   std::array<double, kContactModeCount> mode_seconds_{};
   std::vector<ModeSwitch> switches_;

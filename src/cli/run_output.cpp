@@ -48,8 +48,16 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   const double cpu0 = thread_cpu_seconds();
   std::optional<Eigen::Vector2d> mark;
 
+  const std::array<double, kContactModeCount> seconds0 = sim.mode_seconds();
+  const std::uint64_t switches0 = sim.mode_switch_count();
+  sim.take_mode_switches();  // only this run's switches
+  auto collect = [&]() {
+    for (const ModeSwitch& m : sim.take_mode_switches())
+      if (r.mode_switches.size() < Simulator::kMaxPendingSwitches) r.mode_switches.push_back(m);
+  };
   auto sample = [&](double t) {
     sim.advance_to(t);
+    collect();
     if (opt.on_sample) opt.on_sample(sim.snapshot());
   };
   if (opt.sample_rate > 0.0 && opt.on_sample) {
@@ -60,6 +68,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       if (t > t_end + 1e-9 * dt) break;
       if (!mark && t >= t_mark) {
         sim.advance_to(t_mark);
+        collect();
         mark = position(sim.state());
       }
       sample(t);
@@ -67,10 +76,15 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
     }
   } else {
     sim.advance_to(t_mark);
+    collect();
     mark = position(sim.state());
   }
   sim.advance_to(t_end);
+  collect();
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
+  r.mode_switch_count = sim.mode_switch_count() - switches0;
+  const std::array<double, kContactModeCount> seconds1 = sim.mode_seconds();
+  for (int i = 0; i < kContactModeCount; ++i) r.mode_seconds[i] = seconds1[i] - seconds0[i];
   r.sim_seconds = sim.time() - t0;
   r.final = sim.snapshot();
   r.stats = sim.stats();
@@ -89,7 +103,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
 
 void write_csv_header(std::ostream& os) {
   os << "t,alpha,com_x,com_y,com_z,vcm_x,vcm_y,vcm_z,u_x,u_y,contact_x,contact_y,f_x,f_y,f_z,"
-        "omega_x,omega_y,omega_z,spin,rotor_spin,s,mu,N,phi,regime,energy,energy_residual\n";
+        "omega_x,omega_y,omega_z,spin,rotor_spin,s,mu,N,phi,regime,contact_mode,gap,energy,energy_residual\n";
 }
 
 void write_csv_row(std::ostream& os, const Snapshot& s) {
@@ -99,7 +113,7 @@ void write_csv_row(std::ostream& os, const Snapshot& s) {
      << ',' << s.figure_axis.x() << ',' << s.figure_axis.y() << ',' << s.figure_axis.z() << ','
      << s.angular_velocity.x() << ',' << s.angular_velocity.y() << ',' << s.angular_velocity.z() << ',' << s.spin
      << ',' << s.rotor_spin << ',' << s.slip << ',' << s.mu << ',' << s.normal_force << ',' << s.phi << ','
-     << to_string(s.regime) << ',' << s.energy << ',' << s.energy_balance_residual << '\n';
+     << to_string(s.regime) << ',' << to_string(s.contact_mode) << ',' << s.gap << ',' << s.energy << ',' << s.energy_balance_residual << '\n';
 }
 
 std::string summary_json(const Scene& scene, const RunResult& r) {
@@ -133,8 +147,20 @@ std::string summary_json(const Scene& scene, const RunResult& r) {
      << "  },\n"
      << "  \"energy_balance_residual\": " << num(r.max_energy_residual) << ",\n"
      << "  \"contact_fault\": " << (f.fault == ContactFault::none ? "null" : quoted(f.fault_message)) << ",\n"
-     << "  \"contact_fault_kind\": " << (f.fault == ContactFault::none ? "null" : quoted(to_string(f.fault))) << "\n"
-     << "}\n";
+     << "  \"contact_fault_kind\": " << (f.fault == ContactFault::none ? "null" : quoted(to_string(f.fault))) << ",\n"
+     << "  \"contact_mode\": " << (f.fault == ContactFault::none ? quoted(to_string(f.contact_mode)) : "null") << ",\n"
+     << "  \"mode_seconds\": {";
+  for (int i = 0; i < kContactModeCount; ++i)
+    os << (i ? ", " : "") << quoted(to_string(static_cast<ContactMode>(i))) << ": " << num(r.mode_seconds[i]);
+  os << "},\n"
+     << "  \"mode_switch_count\": " << r.mode_switch_count << ",\n"
+     << "  \"mode_switches\": [";
+  for (std::size_t i = 0; i < r.mode_switches.size(); ++i) {
+    const ModeSwitch& m = r.mode_switches[i];
+    os << (i ? ",\n    " : "\n    ") << "{\"t\": " << num(m.t) << ", \"kind\": " << quoted(to_string(m.kind))
+       << ", \"from\": " << quoted(to_string(m.from)) << ", \"to\": " << quoted(to_string(m.to)) << "}";
+  }
+  os << (r.mode_switches.empty() ? "]\n" : "\n  ]\n") << "}\n";
   return os.str();
 }
 

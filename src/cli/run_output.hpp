@@ -5,6 +5,9 @@
 #include <optional>
 #include <ostream>
 #include <string>
+#include <vector>
+#include <array>
+#include <cstdint>
 
 #include "top_sim/simulator.hpp"
 
@@ -25,6 +28,9 @@ struct RunResult {
   std::optional<double> phi_star;      // analytic, when a stationary state exists
   std::string stationary_note;         // why phi_star is absent
   double max_energy_residual = 0.0;
+  std::vector<ModeSwitch> mode_switches;  // every contact-mode switch of the run, in time order
+  std::uint64_t mode_switch_count = 0;    // all of them (the list stops at Simulator::kMaxPendingSwitches)
+  std::array<double, kContactModeCount> mode_seconds{};  // simulated seconds in each mode (this run)
 };
 
 // Advances the simulator from its current time by options.duration.

@@ -5,12 +5,14 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/contact_modes.hpp"
 
 namespace top_sim {
 
 namespace {
 std::string bad(const char* field, double value, const char* range) {
   std::ostringstream os;
+  os.precision(17);
   os << field << " = " << value << ": must be " << range;
   return os.str();
 }
@@ -34,6 +36,36 @@ std::string validate(const Command& c, const Model& model) {
   if (c.friction) {
     const std::string e = validate(*c.friction);
     if (!e.empty()) return e;
+  }
+  if (c.restitution) {
+    const double e = *c.restitution;
+    if (!std::isfinite(e) || e < 0.0 || e > 1.0) return bad("restitution", e, "in [0, 1]");
+    if (e > 0.0 && !has_contact_modes(model))
+      return bad("restitution", e, "0 with model.normal_force static or model.kind adiabatic (permanent contact)");
+  }
+  if (c.static_friction || c.friction) {
+    // mu_s must stay >= mu(0) of the law in force after the command.
+    Model next = model;
+    if (c.friction) next.friction = *c.friction;
+    if (c.static_friction) next.contact.static_friction = *c.static_friction;
+    const double mu0 = friction_coefficient(next.friction, 0.0);
+    if (c.static_friction) {
+      const double v = *c.static_friction;
+      if (!std::isfinite(v) || v < mu0) {
+        std::ostringstream range;
+        range << ">= mu(0) = " << mu0 << " of law " << to_string(next.friction.kind) << " and finite";
+        return bad("static_friction", v, range.str().c_str());
+      }
+      if (v > 0.0 && !has_contact_modes(model))
+        return bad("static_friction", v, "0 with model.normal_force static or model.kind adiabatic (no rolling)");
+    } else if (next.contact.static_friction && *next.contact.static_friction < mu0) {
+      std::ostringstream os;
+      os.precision(17);
+      os << "friction: law " << to_string(next.friction.kind) << " has mu(0) = " << mu0
+         << " above the static coefficient in force (friction.static = " << *next.contact.static_friction
+         << "); set static_friction >= " << mu0 << " in the same command";
+      return os.str();
+    }
   }
   if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction)) {
     Model next = model;

@@ -22,7 +22,6 @@ ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& 
 const char* to_string(ContactFault fault) {
   switch (fault) {
     case ContactFault::none: return "none";
-    case ContactFault::lift_off: return "lift_off";
     case ContactFault::painleve: return "painleve";
     case ContactFault::fallen: return "fallen";
     case ContactFault::numerical: return "numerical";
@@ -30,29 +29,20 @@ const char* to_string(ContactFault fault) {
   return "?";
 }
 
-ContactFault fault_of(const ContactMargins& m) {
-  if (m.painleve <= 0.0) return ContactFault::painleve;  // first: N itself is meaningless then
-  if (m.normal_force < 0.0) return ContactFault::lift_off;
-  if (m.tilt < 0.0) return ContactFault::fallen;
-  return ContactFault::none;
-}
-
-std::string describe(ContactFault fault, const ContactMargins& m, double t) {
+std::string describe(ContactFault fault, double value, double t) {
   std::ostringstream os;
+  os.precision(17);
   os << "t = " << t << " s: ";
+  os.precision(6);
   switch (fault) {
     case ContactFault::none: os << "no contact fault"; break;
-    case ContactFault::lift_off:
-      os << "lift-off: the normal force N would become negative (N = " << m.normal_force
-         << " N); flight phases are not modelled, the top stops here";
-      break;
     case ContactFault::painleve:
-      os << "Painleve: the rigid contact has no unique normal force (1 - m f A = " << m.painleve
+      os << "Painleve: the rigid contact has no unique normal force (m n.K d = " << value
          << " <= 0); reduce the friction";
       break;
     case ContactFault::fallen:
       os << "fallen: the figure axis is tilted beyond max_tilt from the plane normal (n . f_hat - cos(max_tilt) = "
-         << m.tilt << "); the body would touch the plane";
+         << value << "); the body would touch the plane";
       break;
     case ContactFault::numerical:
       os << "numerical failure: the integrator produced a non-finite state or could not find a step; "

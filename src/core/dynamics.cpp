@@ -1,9 +1,11 @@
-// Right-hand side of the full model (physics.md sections 3, 4 and 6).
+// Right-hand side of the full model in each contact mode (physics.md sections 3, 4, 6 and 9).
 #include "top_sim/dynamics.hpp"
 
+#include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
+#include "rigid_body.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/orientation.hpp"
 
@@ -11,86 +13,96 @@ namespace top_sim {
 
 namespace {
 
-// I'^-1 v for the axisymmetric inertia about f_hat: closed form, no 3x3 solve.
-inline Eigen::Vector3d inverse_inertia_times(double inv_d, double inv_f, const Eigen::Vector3d& f_hat,
-                                             const Eigen::Vector3d& v) {
-  return inv_d * v + (inv_f - inv_d) * f_hat.dot(v) * f_hat;
-}
-
-// Everything but the tilt margin: the right-hand side needs no margins, and cos(theta_max) was 7.5 % of all
-// instructions there (callgrind).
-void evaluate_motion(const Model& model, const StateVector& y, Dynamics& out) {
-  const Top& top = model.top;
-  const double m = top.mass;
-  const double R = top.tip_radius;
-  const double f = top.com_offset;
-  const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
-  const double c = top.has_rotor ? top.rotor.coupling : 0.0;
-  const double nu = top.has_rotor ? y[idx::nu] : 0.0;
-  const Eigen::Vector3d& g = model.plane.g_plane;
-
-  const Eigen::Vector3d f_hat = figure_axis(y).normalized();  // the state's |f_hat| drifts between renormalisations
-  const Eigen::Vector3d w = angular_velocity(y);
-  const Eigen::Vector3d u = velocity3(y);
-
-  // Section 3: slip and friction direction; section 4: contact force direction d = n - mu t_hat.
-  out.contact = contact_kinematics(model, u, w);
+// Slipping (sections 3-4): F = N d, d = n - mu t_hat, N the multiplier keeping n . a_m = 0.
+void slipping_force(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
   out.mu = friction_coefficient(model.friction, out.contact.slip);
   const Eigen::Vector3d d(-out.mu * out.contact.t_hat.x(), -out.mu * out.contact.t_hat.y(), 1.0);
-  const Eigen::Vector3d rho(-f * f_hat.x(), -f * f_hat.y(), -R - f * f_hat.z());  // r_t - r_cm
-
-  // Section 6: L_total = I' omega + J Omega f_hat; shell torque-free part G = omega x L_total - c nu f_hat.
-  const double I_d = top.inertia_transverse;
-  const double I_fs = top.inertia_axial - J;  // I_f'
-  const double inv_d = 1.0 / I_d;
-  const double inv_f = 1.0 / I_fs;
-  const double w_f = w.dot(f_hat);
-  const Eigen::Vector3d L = I_d * w + ((I_fs - I_d) * w_f + J * (w_f + nu)) * f_hat;
-  const Eigen::Vector3d G = w.cross(L) - c * nu * f_hat;
-  const Eigen::Vector3d Ii_rxd = inverse_inertia_times(inv_d, inv_f, f_hat, rho.cross(d));
-  const Eigen::Vector3d Ii_G = inverse_inertia_times(inv_d, inv_f, f_hat, G);
-  const Eigen::Vector3d w_x_f = w.cross(f_hat);
-  const Eigen::Vector3d centripetal = w.cross(w_x_f);
-
   double N;
   if (model.normal_force == NormalForceModel::constrained) {
-    // Section 4: N (1/m - f A) = -n.g + f (C - B), the multiplier keeping n . a_m = 0.
-    const double A = Ii_rxd.cross(f_hat).z();
-    const double B = Ii_G.cross(f_hat).z();
-    const double C = centripetal.z();
-    const double denominator = 1.0 / m - f * A;
-    out.margins.painleve = m * denominator;
+    // Section 4: N (1/m - f A) = -n.g + f (C - B); equal to n.b / (n.K d) of section 9.
+    const Eigen::Vector3d Ii_rxd = b.inverse_inertia(b.rho.cross(d));
+    const double A = Ii_rxd.cross(b.f_hat).z();
+    const double B = b.Ii_G.cross(b.f_hat).z();
+    const double denominator = 1.0 / b.m - b.f * A;
+    painleve = b.m * denominator;
     // Past the Painleve boundary N is meaningless; keep it finite so the fault can be located.
-    const double safe = denominator > 1e-6 / m ? denominator : 1e-6 / m;
-    N = (-g.z() + f * (C - B)) / safe;
+    const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
+    N = (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
   } else {
-    N = -m * g.z();  // static approximation: N = m g cos(alpha)
-    out.margins.painleve = 1.0;
+    N = -b.m * b.g.z();  // static approximation: N = m g cos(alpha)
+    painleve = ModeMargins::kNone;
   }
   out.normal_force = N;
-  out.margins.normal_force = N;
-
   out.contact_force = N * d;
-  out.friction_force = Eigen::Vector3d(N * (d.x()), N * (d.y()), 0.0);
-  out.omega_dot = N * Ii_rxd - Ii_G;
-  out.a_cm = g + out.contact_force / m;
-  out.a_m = out.a_cm - f * (out.omega_dot.cross(f_hat) + centripetal);
-  out.a_m.z() = 0.0;  // the contact holds n . a_m = 0 (exactly for constrained, by construction for static)
-  out.nu_dot = top.has_rotor ? -c * nu / J - out.omega_dot.dot(f_hat) : 0.0;
-  out.dissipation = out.mu * N * out.contact.t_hat.dot(out.contact.v_t) + c * nu * nu;
-  out.psi_dot = spin_phase_rate(f_hat, w);
+  out.dissipation = out.mu * N * out.contact.t_hat.dot(out.contact.v_t);
+}
+
+// Rolling (section 9): F = K^-1 b keeps v_c constant; no work is done at the contact.
+void rolling_contact_force(const detail::RigidBody& b, Dynamics& out) {
+  out.contact_force = b.response_matrix().llt().solve(b.response_bias());
+  out.normal_force = out.contact_force.z();
+  const double Ft = std::hypot(out.contact_force.x(), out.contact_force.y());
+  out.mu = out.normal_force > 0.0 ? Ft / out.normal_force : 0.0;
+  out.dissipation = 0.0;
+}
+
+void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double& painleve) {
+  const detail::RigidBody b(model, y);
+  out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
+  painleve = ModeMargins::kNone;
+  switch (mode) {
+    case ContactMode::slipping: slipping_force(model, b, out, painleve); break;
+    case ContactMode::rolling: rolling_contact_force(b, out); break;
+    case ContactMode::flight:
+      out.mu = 0.0;
+      out.normal_force = 0.0;
+      out.contact_force.setZero();
+      out.dissipation = 0.0;
+      break;
+  }
+  out.friction_force = Eigen::Vector3d(out.contact_force.x(), out.contact_force.y(), 0.0);
+  b.accelerations(out.contact_force, out.omega_dot, out.a_cm, out.a_m);
+  if (mode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0 (exact up to rounding)
+  out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
+  out.dissipation += b.c * b.nu * b.nu;
+  out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
 
 }  // namespace
 
-void evaluate_dynamics(const Model& model, const StateVector& y, Dynamics& out) {
-  evaluate_motion(model, y, out);
-  out.margins.tilt = figure_axis(y).normalized().z() - std::cos(model.top.max_tilt);
+void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+  double painleve;
+  evaluate_motion(model, mode, y, out, painleve);
+  ModeMargins& mg = out.margins;
+  mg = ModeMargins{};
+  const double weight = model.top.mass * model.plane.gravity;
+  const double mu_s = static_friction(model);
+  if (mode != ContactMode::flight && model.top.com_offset != 0.0)  // a ball's figure axis is only a marker
+    mg.tilt = figure_axis(y).normalized().z() - std::cos(model.top.max_tilt);
+  switch (mode) {
+    case ContactMode::slipping:
+      mg.lift = out.normal_force;
+      mg.painleve = painleve;
+      if (mu_s > 0.0 && has_contact_modes(model)) {
+        const Eigen::Vector3d F = rolling_force(contact_response(model, y));
+        const double consistency = (std::hypot(F.x(), F.y()) - mu_s * F.z()) / weight;
+        mg.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
+      }
+      break;
+    case ContactMode::rolling:
+      mg.lift = out.normal_force;
+      mg.transfer = (mu_s * out.normal_force - std::hypot(out.contact_force.x(), out.contact_force.y())) / weight;
+      break;
+    case ContactMode::flight:
+      mg.lift = y[idx::gap];
+      break;
+  }
 }
 
-void derivative(const Model& model, const StateVector& y, StateVector& dydt) {
+void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt) {
   Dynamics dyn;
-  evaluate_motion(model, y, dyn);
+  double painleve;
+  evaluate_motion(model, mode, y, dyn, painleve);
   const Eigen::Vector3d f_dot = angular_velocity(y).cross(figure_axis(y));  // keeps |f_hat| in the exact flow
   dydt[idx::x] = y[idx::u];
   dydt[idx::x + 1] = y[idx::u + 1];
@@ -102,23 +114,29 @@ void derivative(const Model& model, const StateVector& y, StateVector& dydt) {
   }
   dydt[idx::nu] = dyn.nu_dot;
   dydt[idx::w_diss] = dyn.dissipation;
+  // In contact the gap and its rate stay exactly 0 (no drift to correct).
+  dydt[idx::gap] = mode == ContactMode::flight ? y[idx::gap_rate] : 0.0;
+  dydt[idx::gap_rate] = mode == ContactMode::flight ? dyn.a_m.z() : 0.0;
   dydt[idx::psi] = dyn.psi_dot;
 }
 
-void jacobian_difference_steps(const Model& model, const StateVector& y, StateVector& max_step) {
+void jacobian_difference_steps(const Model& model, ContactMode mode, const StateVector& y, StateVector& max_step) {
   max_step.fill(0.0);
-  const ContactKinematics k = contact_kinematics(model, velocity3(y), angular_velocity(y));
+  // Nothing depends on the gap; in contact nothing depends on the gap rate either.
+  max_step[idx::gap] = -1.0;
+  if (mode != ContactMode::flight) max_step[idx::gap_rate] = -1.0;
+  const ContactKinematics k = contact_kinematics(model, in_plane_velocity(y), angular_velocity(y));
   const double width = 1e-4 * std::max(k.v_t.norm(), model.regularization_speed);
   max_step[idx::u] = max_step[idx::u + 1] = width;
   const double R = model.top.tip_radius;
   if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
 }
 
-void model_derivative(const Model& model, const StateVector& y, StateVector& dydt) {
+void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt) {
   if (model.kind == ModelKind::adiabatic)
     adiabatic_derivative(model, y, dydt);
   else
-    derivative(model, y, dydt);
+    derivative(model, mode, y, dydt);
 }
 
 }  // namespace top_sim

@@ -24,7 +24,7 @@ double kinetic_energy(const Model& model, const StateVector& y) {
 double mechanical_energy(const Model& model, const StateVector& y) {
   const Top& top = model.top;
   const Eigen::Vector3d r_cm =
-      Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius) + top.com_offset * figure_axis(y).normalized();
+      Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius + y[idx::gap]) + top.com_offset * figure_axis(y).normalized();
   return kinetic_energy(model, y) - top.mass * model.plane.g_plane.dot(r_cm);  // m g z_cm,W = -m g_P . r_cm
 }
 

@@ -236,8 +236,8 @@ class Rosenbrock4Stepper : public Stepper {
       std::copy(x.begin(), x.end(), xs.begin());
       if (self->difference_steps_) self->difference_steps_(xs, bound);
       for (std::size_t j = 0; j < idx::size; ++j) {
-        // Nothing depends on the position or the dissipated work: their columns are zero.
-        if (j == idx::x || j == idx::x + 1 || j == idx::w_diss || j == idx::psi) {
+        // Nothing depends on the position or the dissipated work; the model marks other zero columns (< 0).
+        if (j == idx::x || j == idx::x + 1 || j == idx::w_diss || j == idx::psi || bound[j] < 0.0) {
           for (std::size_t i = 0; i < idx::size; ++i) jac(i, j) = 0.0;
           continue;
         }
@@ -429,10 +429,60 @@ class SwitchingStepper : public Stepper {
   double window_time_ = 0.0, window_cost_ = 0.0, explicit_rate_ = 0.0;
 };
 
-}  // namespace
+// ---- the scene's method with rosenbrock4 across a stiff layer ------------------------------------------------
 
-std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
-                                      DifferenceSteps difference_steps) {
+// The model says where the state sits in a known stiff layer (the slip-onset layer of physics.md section 9); there
+// rosenbrock4 takes over from whatever method the scene chose, and hands back once the state has left the layer.
+// The hand-over happens at the start of the next step, so dense output always comes from the stepper that made
+// the last step.
+class LayeredStepper : public Stepper {
+ public:
+  LayeredStepper(std::unique_ptr<Stepper> primary, std::unique_ptr<Stepper> layer, StiffLayer in_layer)
+      : primary_(std::move(primary)), layer_(std::move(layer)), in_layer_(std::move(in_layer)) {}
+
+  void reset(const StateVector& y, double t) override {
+    layer_active_ = in_layer_(y, false);
+    active().reset(y, t);
+    switch_pending_ = false;
+  }
+
+  void step(double t_limit) override {
+    if (switch_pending_) {
+      const StateVector y = active().state();
+      const double t = active().time();
+      layer_active_ = !layer_active_;
+      active().reset(y, t);
+      switch_pending_ = false;
+    }
+    Stepper& a = active();
+    const StepperStats before = a.stats;
+    a.step(t_limit);
+    stats.steps += a.stats.steps - before.steps;
+    stats.rejected += a.stats.rejected - before.rejected;
+    stats.rhs_evaluations += a.stats.rhs_evaluations - before.rhs_evaluations;
+    if (layer_active_) layer_steps_ += a.stats.steps - before.steps;
+    switch_pending_ = in_layer_(a.state(), layer_active_) != layer_active_;
+  }
+
+  double time() const override { return active().time(); }
+  double previous_time() const override { return active().previous_time(); }
+  const StateVector& state() const override { return active().state(); }
+  void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
+  double last_step_size() const override { return active().last_step_size(); }
+  std::uint64_t layer_steps() const override { return layer_steps_; }
+
+ private:
+  Stepper& active() { return layer_active_ ? *layer_ : *primary_; }
+  const Stepper& active() const { return layer_active_ ? *layer_ : *primary_; }
+
+  std::unique_ptr<Stepper> primary_, layer_;
+  StiffLayer in_layer_;
+  bool layer_active_ = false, switch_pending_ = false;
+  std::uint64_t layer_steps_ = 0;
+};
+
+std::unique_ptr<Stepper> make_plain_stepper(const IntegratorSettings& settings, System system,
+                                            DifferenceSteps difference_steps) {
   switch (settings.method) {
     case Method::euler:
     case Method::semi_implicit_euler:
@@ -446,6 +496,19 @@ std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System
       return std::make_unique<SwitchingStepper>(settings, std::move(system), std::move(difference_steps));
   }
   throw std::invalid_argument("make_stepper: unknown method");
+}
+
+}  // namespace
+
+std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
+                                      DifferenceSteps difference_steps, StiffLayer in_layer) {
+  if (!in_layer || settings.method == Method::rosenbrock4)
+    return make_plain_stepper(settings, std::move(system), std::move(difference_steps));
+  IntegratorSettings stiff = settings;
+  stiff.method = Method::rosenbrock4;
+  stiff.dt = kLayerFirstStep;
+  return std::make_unique<LayeredStepper>(make_plain_stepper(settings, system, difference_steps),
+                                          make_plain_stepper(stiff, system, difference_steps), std::move(in_layer));
 }
 
 }  // namespace top_sim

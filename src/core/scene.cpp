@@ -5,11 +5,13 @@
 
 #include <cmath>
 #include <functional>
+#include <optional>
 #include <set>
 #include <sstream>
 #include <sys/stat.h>
 
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/contact_modes.hpp"
 #include "top_sim/stationary.hpp"
 
 #ifndef TOP_SIM_SOURCE_CONFIG_DIR
@@ -150,7 +152,7 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
   Top top;
   top.mass = s.number("mass", top.mass, positive, "> 0 [kg]");
   top.tip_radius = s.number("tip_radius", top.tip_radius, non_negative, ">= 0 [m]");
-  top.com_offset = s.number("com_offset", top.com_offset, [](double v) { return v != 0.0; }, "nonzero [m]");
+  top.com_offset = s.number("com_offset", top.com_offset, finite, "a finite number [m] (0: a ball)");
   top.inertia_axial = s.number("inertia_axial", top.inertia_axial, positive, "> 0 [kg m^2]");
   top.inertia_transverse = s.number("inertia_transverse", top.inertia_transverse, positive, "> 0 [kg m^2]");
   if (top.inertia_axial > 2.0 * top.inertia_transverse)
@@ -175,7 +177,8 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
 
 }  // namespace
 
-static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps) {
+static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps,
+                                     std::optional<double>& static_friction) {
   FrictionLaw law;
   const std::string kind = s.word("law", "paper", {"paper", "linearized", "coulomb", "table"});
   parse_friction_law_kind(kind, law.kind);  // word() admitted only the four names
@@ -186,7 +189,7 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
       throw SceneError(file, join(s.path(), key),
                        show(s.raw(key)) + " is not a parameter of law " + kind + " (it belongs to law " +
                            to_string(owner) + "); law " + kind + " takes: " +
-                           accepted[static_cast<int>(law.kind)] + ", regularization_speed");
+                           accepted[static_cast<int>(law.kind)] + ", regularization_speed, static");
   };
   only_for("mu_c", FrictionLawKind::paper);
   only_for("s_c", FrictionLawKind::paper);
@@ -223,6 +226,11 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
   }
   const std::string e = validate(law);
   if (!e.empty()) throw SceneError(file, "", e);
+  if (s.has("static")) {
+    const double mu0 = friction_coefficient(law, 0.0);
+    static_friction = s.number("static", 0.0, [mu0](double v) { return v >= mu0; },
+                               ">= mu(0) = " + fmt(mu0) + " of law " + kind + " (the static coefficient mu_s)");
+  }
   return law;
 }
 
@@ -261,7 +269,8 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
     std::string fsource;
     const YAML::Node fnode = resolve_named(s.raw("friction"), file, "friction", config_dir, "planes", fsource);
     Section f(fnode, fsource, "friction");
-    scene.model.friction = read_friction_law(f, fsource, scene.model.regularization_speed);
+    scene.model.friction = read_friction_law(f, fsource, scene.model.regularization_speed,
+                                             scene.model.contact.static_friction);
     f.finish();
     if (clamp_is_active(scene.model.friction))
       scene.warnings.push_back(fsource + ": friction law " + to_string(scene.model.friction.kind) +
@@ -279,6 +288,29 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
     if (scene.model.kind == ModelKind::adiabatic) {
       const std::string e = adiabatic_validity(scene.model);
       if (!e.empty()) throw SceneError(file, "model.kind", e);
+    }
+  }
+
+  // contact modes (physics.md section 9)
+  {
+    Section c(s.raw("contact"), file, "contact");
+    ContactSettings& cs = scene.model.contact;
+    cs.restitution = c.number("restitution", cs.restitution, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
+    cs.stick_speed = c.number("stick_speed", cs.stick_speed, positive, "> 0 [m/s]");
+    cs.settle_speed = c.number("settle_speed", cs.settle_speed, positive, "> 0 [m/s]");
+    c.finish();
+    // The static normal force keeps the paper's permanent slipping contact: no rolling, no bounce.
+    if (scene.model.normal_force == NormalForceModel::static_approximation) {
+      if (cs.static_friction && *cs.static_friction > 0.0)
+        throw SceneError(file, "friction.static",
+                         fmt(*cs.static_friction) + " > 0 needs rolling, but model.normal_force = static keeps a "
+                         "permanent slipping contact (physics.md section 9); use model.normal_force: constrained "
+                         "or friction.static: 0");
+      if (cs.restitution > 0.0)
+        throw SceneError(file, "contact.restitution",
+                         fmt(cs.restitution) + " > 0 needs flight and impacts, but model.normal_force = static "
+                         "keeps a permanent contact (physics.md section 9); use model.normal_force: constrained "
+                         "or contact.restitution: 0");
     }
   }
 
@@ -304,7 +336,16 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
     ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
     ic.position = i.pair("position", ic.position);
     ic.velocity = i.pair("velocity", ic.velocity);
+    ic.gap = i.number("gap", ic.gap, non_negative, ">= 0 [m] (height of the tip sphere above the plane)");
+    ic.gap_rate = i.number("gap_rate", ic.gap_rate, finite, "a finite number [m/s] (normal velocity of the tip sphere)");
     i.finish();
+    if ((ic.gap > 0.0 || ic.gap_rate != 0.0) && !has_contact_modes(scene.model))
+      throw SceneError(file, ic.gap > 0.0 ? "initial.gap" : "initial.gap_rate",
+                       "a flight start needs model.normal_force: constrained and model.kind: full "
+                       "(the other models keep a permanent contact)");
+    if (ic.gap == 0.0 && ic.gap_rate < 0.0)
+      throw SceneError(file, "initial.gap_rate", fmt(ic.gap_rate) + " < 0 at gap 0 would start inside the plane; "
+                       "must be >= 0 when initial.gap is 0");
     if (ic.start == StartKind::stationary) {
       const StationaryState st = stationary_state(scene.model, ic.spin);
       if (!st.exists) throw SceneError(file, "initial.start", "'stationary' is impossible: " + st.reason);
@@ -394,6 +435,8 @@ StateVector initial_state(const Scene& scene) {
   set_figure_axis(y, f_hat);
   set_angular_velocity(y, ic.spin * f_hat + (w_t - w_t.dot(f_hat) * f_hat));
   y[idx::nu] = model.top.has_rotor ? ic.rotor_spin - ic.spin : 0.0;
+  y[idx::gap] = ic.gap;
+  y[idx::gap_rate] = ic.gap_rate;
   return y;
 }
 

@@ -1,33 +1,89 @@
-// The Simulator: time, stepper, events, commands, fault location (physics.md sections 4 and 8).
+// The Simulator: time, stepper, contact modes and their events, commands, faults (physics.md sections 4, 8, 9).
 #include "top_sim/simulator.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/impact.hpp"
 #include "top_sim/orientation.hpp"
 
 namespace top_sim {
 
 namespace {
 
-ContactMargins margins_of(const Model& model, const StateVector& y) {
+// Event codes of one sample, in the order they are handled when several fire together.
+enum Event { kNoEvent = 0, kPainleve, kLift, kTransfer, kFallen };
+
+// Samples per nutation period where a margin is near its threshold (physics.md section 9: the shortest sign dips,
+// e.g. the 34 us of negative N in the first 76 us hop at 5000 rad/s, last about 1/20 of a nutation period).
+constexpr double kSamplesPerNutation = 40.0;
+constexpr int kMaxSamplesPerStep = 4096;
+constexpr int kMinFlightSamples = 4;      // a whole hop may fit in one step: always look inside it
+constexpr int kMaxInstantSwitches = 100;  // mode switches at one instant before the Zeno guard stops the run
+// Guard bands: a margin this close to its threshold at either end of a step makes the step sampled inside.
+constexpr double kForceGuard = 0.5;       // N, F_n, rolling margin: fraction of the weight m g
+constexpr double kStickGuard = 1.0e3;     // stick function: |v_t| < 1000 v_stick
+constexpr double kPainleveGuard = 0.5;    // m n.K d (1 without friction)
+constexpr double kTiltGuard = 0.05;       // n . f_hat - cos(theta_max)
+// The stiff slip-onset layer (mu(0) > 0, |v_t| small, slipping) is crossed by rosenbrock4 below this many
+// stick speeds and handed back above twice that (explicit steps are stable there at the usual step sizes).
+constexpr double kLayerWidth = 100.0;
+
+double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
+
+ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y) {
   Dynamics dyn;
-  evaluate_dynamics(model, y, dyn);
+  evaluate_dynamics(model, mode, y, dyn);
   return dyn.margins;
 }
 
-double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
+// Spacing of event samples: 1/40 of the nutation period 2 pi I_d / |L_total . f_hat| (infinite without spin).
+double sample_spacing(const Model& model, const StateVector& y) {
+  const Top& top = model.top;
+  const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
+  const double w_f = shell_spin(y);
+  const double axial = std::abs((top.inertia_axial - J) * w_f + J * (w_f + (top.has_rotor ? y[idx::nu] : 0.0)));
+  if (!(axial > 0.0)) return std::numeric_limits<double>::infinity();
+  return 2.0 * M_PI * top.inertia_transverse / axial / kSamplesPerNutation;
+}
+
+bool near_threshold(const ModeMargins& m, ContactMode mode) {
+  if (mode == ContactMode::flight) return true;
+  const double transfer_guard = mode == ContactMode::slipping ? kStickGuard : kForceGuard;
+  return m.lift < kForceGuard || m.transfer < transfer_guard || m.painleve < kPainleveGuard || m.tilt < kTiltGuard;
+}
+
+std::string impact_painleve_message(double t, double denominator) {
+  std::ostringstream os;
+  os.precision(17);
+  os << "t = " << t << " s: ";
+  os.precision(6);
+  os << "Painleve at impact: the sliding impulse has no admissible normal part (n . K (n - mu_i t_hat) = "
+     << denominator << " <= 0); reduce the friction";
+  return os.str();
+}
 
 }  // namespace
 
 Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
   stepper_ = make_stepper(
-      scene_.integrator, [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, y, dydt); },
-      [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, y, h); });
+      scene_.integrator,
+      [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt); },
+      [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
+      [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); });
   reset();
+}
+
+bool Simulator::in_stiff_layer(const StateVector& y, bool inside) const {
+  if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
+  if (!(raw_friction_coefficient(model_.friction, 0.0) > 0.0)) return false;  // no friction kink at v_t = 0
+  const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
+  const double width = kLayerWidth * std::max(model_.contact.stick_speed, model_.regularization_speed);
+  return k.v_t.norm() < (inside ? 2.0 : 1.0) * width;
 }
 
 void Simulator::reset() {
@@ -43,21 +99,47 @@ void Simulator::reset() {
   fault_message_.clear();
   max_residual_ = 0.0;
   regime_ = Regime::nutating;
-  restart_stepper();
+  mode_seconds_.fill(0.0);
+  switches_.clear();
+  switch_count_ = 0;
+  instant_switches_ = 0;
+  last_switch_t_ = -1.0;
+  const ClosingResult c = initial_mode(model_, y_);  // a stick impulse here is part of the initial state
+  mode_ = c.mode;
+  mode_since_ = t_;
+  if (c.painleve) {
+    Dynamics dyn;
+    evaluate_dynamics(model_, ContactMode::slipping, y_, dyn);
+    fail(ContactFault::painleve, describe(ContactFault::painleve, dyn.margins.painleve, t_));
+  }
+  restart_stepper(true);
   update_regime();
 }
 
-// After any jump of the state or the model: re-base the energy balance and check the new state for faults.
-void Simulator::restart_stepper() {
+// After any jump of the state, the model or the mode: optionally re-base the energy balance (commands inject
+// energy; events book their losses in W_diss and keep it), arm the new mode's margins, check for faults.
+void Simulator::restart_stepper(bool rebase_energy) {
   if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y_);
-  balance_.rebase(model_, y_);
+  if (rebase_energy) balance_.rebase(model_, y_);
   stepper_->reset(y_, t_);
-  last_margins_ = margins_of(model_, y_);
-  const ContactFault f = all_finite(y_) ? fault_of(last_margins_) : ContactFault::numerical;
-  if (f != ContactFault::none && model_.kind == ModelKind::full) {
-    fault_ = f;
-    fault_message_ = describe(f, last_margins_, t_);
+  last_margins_ = margins_of(model_, mode_, y_);
+  lift_armed_ = last_margins_.lift > 0.0;
+  transfer_armed_ = last_margins_.transfer > 0.0;
+  if (fault_ != ContactFault::none) return;
+  if (!all_finite(y_)) {
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
+  } else if (model_.kind == ModelKind::full) {
+    if (last_margins_.painleve <= 0.0)
+      fail(ContactFault::painleve, describe(ContactFault::painleve, last_margins_.painleve, t_));
+    else if (last_margins_.tilt < 0.0)
+      fail(ContactFault::fallen, describe(ContactFault::fallen, last_margins_.tilt, t_));
   }
+}
+
+void Simulator::fail(ContactFault fault, const std::string& message) {
+  if (fault_ != ContactFault::none) return;
+  fault_ = fault;
+  fault_message_ = message;
 }
 
 std::string Simulator::submit(const Command& command) {
@@ -74,12 +156,31 @@ void Simulator::apply_now(const Command& c) {
   const double rotor_spin = spin + y_[idx::nu];
   if (c.inclination) model_.plane = make_plane(*c.inclination, model_.plane.gravity);
   if (c.friction) model_.friction = *c.friction;
+  if (c.static_friction) model_.contact.static_friction = *c.static_friction;
+  if (c.restitution) model_.contact.restitution = *c.restitution;
   if (c.rotor_coupling) model_.top.rotor.coupling = *c.rotor_coupling;
   if (c.spin) {
     set_angular_velocity(y_, angular_velocity(y_) + (*c.spin - spin) * f_hat);
     if (model_.top.has_rotor) y_[idx::nu] = rotor_spin - *c.spin;  // the rotor keeps its absolute spin
   }
   if (c.rotor_spin) y_[idx::nu] = *c.rotor_spin - shell_spin(y_);
+}
+
+// A contact that a command changed (spin, friction, inclination) may no longer hold in its mode: the closing rule
+// decides again (a flight stays a flight).
+void Simulator::reclose_contact() {
+  if (mode_ == ContactMode::flight || !has_contact_modes(model_)) return;
+  const ContactMode before = mode_;
+  const double e0 = mechanical_energy(model_, y_);
+  const ClosingResult c = close_contact(model_, y_);
+  y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);  // the stick impulse's loss, if any
+  if (c.painleve) return;  // restart_stepper() reports it from the margins
+  if (c.mode != before) {
+    const ModeSwitchKind kind = c.mode == ContactMode::flight  ? ModeSwitchKind::lift_off
+                                : c.mode == ContactMode::rolling ? ModeSwitchKind::stick
+                                                                 : ModeSwitchKind::slip;
+    switch_mode(c.mode, kind);
+  }
 }
 
 void Simulator::apply_pending() {
@@ -92,30 +193,199 @@ void Simulator::apply_pending() {
     due.push_back(scene_.events[next_event_++].command);
   if (due.empty()) return;
   for (const Command& c : due) apply_now(c);
-  restart_stepper();
+  reclose_contact();
+  restart_stepper(true);
 }
 
-void Simulator::advance_to(double t_target) {
+bool Simulator::advance_to(double t_target, double budget_seconds) {
+  using Clock = std::chrono::steady_clock;
+  const bool budgeted = std::isfinite(budget_seconds);
+  const Clock::time_point deadline =
+      budgeted ? Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                                    std::max(budget_seconds, 0.0)))
+               : Clock::time_point::max();
   while (fault_ == ContactFault::none && t_ < t_target) {
     apply_pending();
-    if (fault_ != ContactFault::none) return;
+    if (fault_ != ContactFault::none) break;
     double t_stop = t_target;
     if (next_event_ < scene_.events.size()) t_stop = std::min(t_stop, t_origin_ + scene_.events[next_event_].t);
     try {
       while (stepper_->time() < t_stop) {
         stepper_->step(t_stop);
-        if (!check_last_step()) return;
+        if (!check_step()) {  // an event moved the state to its instant (or a fault stopped the top)
+          if (fault_ != ContactFault::none) break;
+          continue;
+        }
+        if (budgeted && stepper_->time() < t_stop && Clock::now() >= deadline) {
+          y_ = stepper_->state();  // a step boundary: the stepper continues from here next time
+          t_ = stepper_->time();
+          update_regime();
+          return false;
+        }
       }
     } catch (const std::exception& e) {  // odeint gives up when it cannot find an acceptable step
-      fault_ = ContactFault::numerical;
-      fault_message_ = describe(fault_, last_margins_, stepper_->time()) + " (" + e.what() + ")";
-      return;
+      fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, stepper_->time()) + " (" + e.what() + ")");
     }
-    stepper_->state_at(t_stop, y_);
+    if (fault_ != ContactFault::none) break;
+    if (stepper_->time() > t_stop) {
+      stepper_->state_at(t_stop, y_);
+    } else {
+      y_ = stepper_->state();
+    }
     t_ = t_stop;
   }
-  apply_pending();  // events due exactly at t_target take effect now, so the state shows them
+  if (fault_ == ContactFault::none) apply_pending();  // events due exactly at t_target take effect now
   update_regime();
+  return true;
+}
+
+// Which event a sample shows: faults, then lift-off / touchdown, then stick / slip (armed margins only).
+int Simulator::fired(const ModeMargins& m, const StateVector& y) const {
+  if (model_.kind != ModelKind::full) return kNoEvent;
+  if (m.painleve <= 0.0) return kPainleve;
+  if (mode_ == ContactMode::flight) {
+    // Touchdown: the gap is down to 0 while closing; a flight starts at gap 0 with a non-negative rate.
+    if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) return kLift;
+  } else if (lift_armed_ && m.lift < 0.0) {
+    return kLift;
+  }
+  if (transfer_armed_ && m.transfer <= 0.0) return kTransfer;
+  if (m.tilt < 0.0) return kFallen;
+  return kNoEvent;
+}
+
+// Checks the accepted step for events on the dense output. Returns true when the step stands; otherwise the
+// state is at the located event (or fault) instant, the event is handled and the stepper restarted.
+bool Simulator::check_step() {
+  const StateVector& y1 = stepper_->state();
+  const double t0 = stepper_->previous_time(), t1 = stepper_->time();
+  if (!all_finite(y1)) {
+    t_ = t0;
+    stepper_->state_at(t_, y_);
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
+    return false;
+  }
+  max_residual_ = std::max(max_residual_, balance_.residual(model_, y1));
+  if (model_.kind != ModelKind::full) return true;
+
+  const ModeMargins m1 = margins_of(model_, mode_, y1);
+  int samples = 1;
+  if (near_threshold(last_margins_, mode_) || near_threshold(m1, mode_)) {
+    const double n = std::ceil((t1 - t0) / sample_spacing(model_, y1));
+    samples = static_cast<int>(std::min<double>(std::isfinite(n) ? n : 1.0, kMaxSamplesPerStep));
+    samples = std::max(samples, mode_ == ContactMode::flight ? kMinFlightSamples : 1);
+  }
+  double t_prev = t0;
+  StateVector yk;
+  for (int k = 1; k <= samples; ++k) {
+    const double tk = k == samples ? t1 : t0 + (t1 - t0) * k / samples;
+    if (k == samples) yk = y1; else stepper_->state_at(tk, yk);
+    const ModeMargins mk = k == samples ? m1 : margins_of(model_, mode_, yk);
+    if (fired(mk, yk) != kNoEvent) {
+      // Bisect between the last quiet sample and this one for the first instant an event fires.
+      double lo = t_prev, hi = tk;
+      StateVector ym;
+      for (int i = 0; i < 80 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++i) {
+        const double mid = 0.5 * (lo + hi);
+        stepper_->state_at(mid, ym);
+        if (fired(margins_of(model_, mode_, ym), ym) != kNoEvent) hi = mid; else lo = mid;
+      }
+      stepper_->state_at(hi, y_);
+      t_ = hi;
+      const ModeMargins mh = margins_of(model_, mode_, y_);
+      int event = fired(mh, y_);
+      if (event == kNoEvent) event = fired(mk, yk);  // rounding at the boundary: keep the sample's verdict
+      handle_event(event, mh);
+      return false;
+    }
+    if (mk.lift > 0.0) lift_armed_ = true;
+    if (mk.transfer > 0.0) transfer_armed_ = true;
+    t_prev = tk;
+  }
+  last_margins_ = m1;
+  return true;
+}
+
+void Simulator::handle_event(int event, const ModeMargins& m) {
+  switch (event) {
+    case kPainleve:
+      fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
+      return;
+    case kFallen:
+      fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
+      return;
+    case kTransfer:
+      if (mode_ == ContactMode::slipping) {
+        const double e0 = mechanical_energy(model_, y_);
+        apply_stick_impulse(model_, y_);
+        y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);
+        switch_mode(ContactMode::rolling, ModeSwitchKind::stick);
+      } else {
+        switch_mode(ContactMode::slipping, ModeSwitchKind::slip);  // starts with v_t = 0
+      }
+      break;
+    case kLift:
+      if (mode_ != ContactMode::flight) {
+        y_[idx::gap] = y_[idx::gap_rate] = 0.0;
+        switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
+        break;
+      }
+      {
+        y_[idx::gap] = 0.0;
+        const double e0 = mechanical_energy(model_, y_);
+        const ImpactResult impact = apply_impact(model_, y_);
+        if (impact.painleve) {
+          fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+          return;
+        }
+        ContactMode next = ContactMode::flight;  // a bounce flies again
+        if (impact.plastic) {
+          const ClosingResult c = close_contact(model_, y_);
+          if (c.painleve) {
+            y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);
+            switch_mode(ContactMode::slipping, ModeSwitchKind::touchdown);
+            restart_stepper(false);  // reports the fault from the margins
+            return;
+          }
+          next = c.mode;
+        }
+        y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
+        switch_mode(next, ModeSwitchKind::touchdown);
+      }
+      break;
+    default:
+      return;
+  }
+  if (fault_ == ContactFault::none) restart_stepper(false);
+}
+
+void Simulator::switch_mode(ContactMode mode, ModeSwitchKind kind) {
+  mode_seconds_[static_cast<int>(mode_)] += t_ - mode_since_;
+  mode_since_ = t_;
+  if (switches_.size() < kMaxPendingSwitches) switches_.push_back({t_, kind, mode_, mode});
+  ++switch_count_;
+  mode_ = mode;
+  instant_switches_ = t_ - last_switch_t_ > 1e-12 * std::max(1.0, std::abs(t_)) ? 0 : instant_switches_ + 1;
+  last_switch_t_ = t_;
+  if (instant_switches_ > kMaxInstantSwitches) {
+    std::ostringstream os;
+    os << describe(ContactFault::numerical, 0.0, t_) << " (" << instant_switches_
+       << " contact-mode switches without time advancing, last " << to_string(kind) << " to " << to_string(mode)
+       << ")";
+    fail(ContactFault::numerical, os.str());
+  }
+}
+
+std::array<double, kContactModeCount> Simulator::mode_seconds() const {
+  std::array<double, kContactModeCount> s = mode_seconds_;
+  s[static_cast<int>(mode_)] += t_ - mode_since_;
+  return s;
+}
+
+std::vector<ModeSwitch> Simulator::take_mode_switches() {
+  std::vector<ModeSwitch> out;
+  out.swap(switches_);
+  return out;
 }
 
 void Simulator::update_regime() {
@@ -124,52 +394,15 @@ void Simulator::update_regime() {
     return;
   }
   Dynamics dyn;
-  evaluate_dynamics(model_, y_, dyn);
+  evaluate_dynamics(model_, mode_, y_, dyn);
   const RegimeIndicators ind = model_.kind == ModelKind::adiabatic ? RegimeIndicators{} : regime_indicators(model_, y_, dyn);
   regime_ = classify(model_.regime, ind, false, regime_);
-}
-
-// Checks the accepted step for faults; on one, moves the state to the located fault instant.
-bool Simulator::check_last_step() {
-  const StateVector& y = stepper_->state();
-  if (!all_finite(y)) {
-    fault_ = ContactFault::numerical;
-    t_ = stepper_->previous_time();
-    stepper_->state_at(t_, y_);
-    fault_message_ = describe(fault_, last_margins_, t_);
-    return false;
-  }
-  max_residual_ = std::max(max_residual_, balance_.residual(model_, y));
-  if (model_.kind != ModelKind::full) return true;
-  const ContactMargins m = margins_of(model_, y);
-  if (fault_of(m) == ContactFault::none) {
-    last_margins_ = m;
-    return true;
-  }
-  // Bisect on the dense output for the first instant any margin changes sign.
-  double lo = stepper_->previous_time(), hi = stepper_->time();
-  StateVector ym;
-  for (int i = 0; i < 60 && hi - lo > 1e-12; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    stepper_->state_at(mid, ym);
-    if (fault_of(margins_of(model_, ym)) == ContactFault::none)
-      lo = mid;
-    else
-      hi = mid;
-  }
-  stepper_->state_at(hi, y_);
-  t_ = hi;
-  last_margins_ = margins_of(model_, y_);
-  fault_ = fault_of(last_margins_);
-  if (fault_ == ContactFault::none) fault_ = fault_of(m);
-  fault_message_ = describe(fault_, last_margins_, t_);
-  return false;
 }
 
 StationaryState Simulator::stationary() const { return stationary_state(model_, shell_spin(y_)); }
 
 Snapshot Simulator::snapshot() const {
-  Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary(), regime_);
+  Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary(), regime_, mode_);
   s.regime = regime_;  // classified once, at the end of the last advance (with its hysteresis)
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
@@ -180,17 +413,19 @@ Snapshot Simulator::snapshot() const {
 }
 
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary, Regime previous) {
+                       const StationaryState& stationary, Regime previous, ContactMode mode) {
   Snapshot s;
   Dynamics dyn;
-  evaluate_dynamics(model, y, dyn);
+  evaluate_dynamics(model, mode, y, dyn);
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d w = angular_velocity(y);
   const Eigen::Vector3d u = velocity3(y);
   s.t = t;
   s.alpha = model.plane.inclination;
-  s.tip_center = Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius);
+  s.contact_mode = mode;
+  s.gap = y[idx::gap];
+  s.tip_center = Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius + s.gap);
   s.com = s.tip_center + top.com_offset * f_hat;
   s.orientation = body_orientation(f_hat, y[idx::psi]);
   s.tip_velocity = u;
@@ -210,7 +445,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
     s.com_acceleration.setZero();
   } else {
-    s.slip = dyn.contact.slip;
+    s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;
     s.normal_force = dyn.normal_force;
     s.friction_force = dyn.friction_force;
@@ -221,7 +456,11 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.phi_star = s.has_stationary_state ? stationary.phi : 0.0;
   s.indicators = regime_indicators(model, y, dyn);
   if (model.kind == ModelKind::adiabatic) s.indicators = RegimeIndicators{};
-  s.fault = model.kind == ModelKind::full ? fault_of(dyn.margins) : ContactFault::none;
+  s.fault = ContactFault::none;
+  if (model.kind == ModelKind::full) {
+    if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
+    else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
+  }
   s.regime = classify(model.regime, s.indicators, s.fault != ContactFault::none, previous);
   s.energy = mechanical_energy(model, y);
   s.dissipated_work = y[idx::w_diss];

@@ -150,7 +150,7 @@ double painleve_margin(const Model& m, double th, double b) {
   set_figure_axis(y, Eigen::Vector3d(std::sin(th), 0.0, std::cos(th)));
   set_velocity(y, Eigen::Vector2d(std::cos(b), std::sin(b)));  // 1 m/s >> v_eps: t_hat is a unit vector
   Dynamics dyn;
-  evaluate_dynamics(m, y, dyn);
+  evaluate_dynamics(m, ContactMode::slipping, y, dyn);
   return dyn.margins.painleve;
 }
 
@@ -271,7 +271,7 @@ TEST(InitialFaults, HugeTransverseAngularVelocityLiftsOffAtTimeZero) {
   const Scene scene = scene_from(aluminium_scene("{inclination: 0.1}", "pmma",
                                                  "{tilt: 0.3, spin: 200.0, angular_velocity_transverse: [0.0, 100.0]}"));
   Dynamics dyn;
-  evaluate_dynamics(scene.model, initial_state(scene), dyn);
+  evaluate_dynamics(scene.model, ContactMode::slipping, initial_state(scene), dyn);
   EXPECT_LT(dyn.normal_force, 0.0);
   Simulator sim(scene);
   EXPECT_EQ(sim.fault(), ContactFault::lift_off) << to_string(sim.fault());

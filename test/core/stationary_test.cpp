@@ -158,9 +158,9 @@ void check_equilibrium(Model m, double spin, const std::string& what) {
   ASSERT_TRUE(st.exists) << st.reason;
   const StateVector y = stationary_state_vector(m, st, spin, Eigen::Vector2d(0.3, -0.2), 0.0);
   StateVector dy{};
-  derivative(m, y, dy);
+  derivative(m, ContactMode::slipping, y, dy);
   Dynamics dyn;
-  evaluate_dynamics(m, y, dyn);
+  evaluate_dynamics(m, ContactMode::slipping, y, dyn);
   const double g = m.plane.gravity, alpha = m.plane.inclination;
   const double lever = (m.top.tip_radius * kN + m.top.com_offset * st.f_hat).norm();
   const double torque_scale = m.top.mass * g * lever / m.top.inertia_transverse;
@@ -172,7 +172,8 @@ void check_equilibrium(Model m, double spin, const std::string& what) {
   EXPECT_NEAR(dy[idx::x], st.velocity.x(), 1e-15);
   EXPECT_NEAR(dyn.dissipation, m.top.mass * g * std::sin(alpha) * st.sliding_speed,
               1e-12 * m.top.mass * g * st.sliding_speed);
-  EXPECT_EQ(fault_of(dyn.margins), ContactFault::none);
+  EXPECT_GT(dyn.margins.painleve, 0.0);
+  EXPECT_GT(dyn.margins.lift, 0.0);
 }
 
 TEST(StationarySolver, ExactStateIsAnEquilibriumOfTheFullDynamics) {

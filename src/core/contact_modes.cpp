@@ -1,0 +1,103 @@
+// Contact modes (physics.md section 9): K, the rolling force, the stick impulse and the closing rule.
+#include "top_sim/contact_modes.hpp"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "rigid_body.hpp"
+#include "top_sim/dynamics.hpp"
+
+namespace top_sim {
+
+const char* to_string(ContactMode mode) {
+  switch (mode) {
+    case ContactMode::slipping: return "slipping";
+    case ContactMode::rolling: return "rolling";
+    case ContactMode::flight: return "flight";
+  }
+  return "?";
+}
+
+const char* to_string(ModeSwitchKind kind) {
+  switch (kind) {
+    case ModeSwitchKind::lift_off: return "lift_off";
+    case ModeSwitchKind::touchdown: return "touchdown";
+    case ModeSwitchKind::stick: return "stick";
+    case ModeSwitchKind::slip: return "slip";
+  }
+  return "?";
+}
+
+bool has_contact_modes(const Model& model) {
+  return model.normal_force == NormalForceModel::constrained && model.kind == ModelKind::full;
+}
+
+ContactResponse contact_response(const Model& model, const StateVector& y) {
+  const detail::RigidBody b(model, y);
+  ContactResponse r;
+  r.K = b.response_matrix();
+  r.b = b.response_bias();
+  r.rho = b.rho;
+  r.v_c = b.contact_velocity();
+  return r;
+}
+
+Eigen::Vector3d rolling_force(const ContactResponse& r) { return r.K.llt().solve(r.b); }
+
+bool rolling_consistent(const Eigen::Vector3d& F, double static_friction) {
+  return F.z() > 0.0 && std::hypot(F.x(), F.y()) <= static_friction * F.z();
+}
+
+void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y) {
+  const detail::RigidBody b(model, y);
+  // dv_cm = P / m, I' d omega = rho x P; u = v_cm - omega x (f f_hat); the rotor keeps its absolute spin
+  // (the bearing is viscous: no impulsive torque), so nu changes by -d omega . f_hat.
+  const Eigen::Vector3d d_omega = b.inverse_inertia(b.rho.cross(P));
+  const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
+  set_velocity3(y, b.u + d_u);
+  set_angular_velocity(y, b.w + d_omega);
+  if (model.top.has_rotor) y[idx::nu] -= d_omega.dot(b.f_hat);
+}
+
+void apply_stick_impulse(const Model& model, StateVector& y) {
+  const ContactResponse r = contact_response(model, y);
+  // P = -K^-1 (v_t, 0): removes the tangential contact velocity and leaves n . v_c unchanged.
+  const Eigen::Vector3d v_t(r.v_c.x(), r.v_c.y(), 0.0);
+  apply_contact_impulse(model, -r.K.llt().solve(v_t), y);
+}
+
+ClosingResult close_contact(const Model& model, StateVector& y) {
+  ClosingResult out;
+  y[idx::gap] = 0.0;
+  y[idx::gap_rate] = 0.0;
+  if (!has_contact_modes(model)) return out;  // permanent slipping contact
+  const double mu_s = static_friction(model);
+  if (mu_s > 0.0) {
+    const ContactResponse r = contact_response(model, y);
+    const double v_t = std::hypot(r.v_c.x(), r.v_c.y());
+    if (v_t <= model.contact.stick_speed && rolling_consistent(rolling_force(r), mu_s)) {
+      apply_stick_impulse(model, y);
+      out.mode = ContactMode::rolling;
+      out.stuck = true;
+      return out;
+    }
+  }
+  Dynamics dyn;
+  evaluate_dynamics(model, ContactMode::slipping, y, dyn);
+  if (dyn.margins.painleve <= 0.0)
+    out.painleve = true;
+  else if (dyn.normal_force < 0.0)
+    out.mode = ContactMode::flight;
+  return out;
+}
+
+ClosingResult initial_mode(const Model& model, StateVector& y) {
+  if (has_contact_modes(model) && (y[idx::gap] > 0.0 || y[idx::gap_rate] > 0.0)) {
+    ClosingResult out;
+    out.mode = ContactMode::flight;
+    return out;
+  }
+  return close_contact(model, y);
+}
+
+}  // namespace top_sim
