@@ -1,10 +1,10 @@
 // top_sim_node: a thin ROS adapter over top_sim::Simulator (docs/ros.md, docs/interfaces.md).
-// Single-threaded: the wall timer, subscribers, services and dynamic_reconfigure share one callback queue.
+// Single-threaded: one loop on the main thread answers the callbacks (subscribers, services, dynamic_reconfigure),
+// advances the core within a wall-clock budget (top_sim::Pacer) and publishes, once per publish period.
 #include <ros/ros.h>
 
 #include <cmath>
 #include <ctime>
-#include <deque>
 #include <memory>
 #include <set>
 #include <sstream>
@@ -24,6 +24,7 @@
 #include "top_sim/TopCommand.h"
 #include "top_sim/TopSimConfig.h"
 #include "top_sim/TopState.h"
+#include "top_sim/pacing.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #ifdef TOP_SIM_HAVE_LCM
@@ -152,7 +153,8 @@ class TopSimNode {
     // Stamps: simulated time offset by the wall clock at start, so rviz at real_time_factor 1 sees current stamps.
     stamp_origin_ = ros::Time::now().toSec();
     if (stamp_origin_ <= 0.0) stamp_origin_ = ros::WallTime::now().toSec();
-    anchor();
+    pacer_ = std::make_unique<top_sim::Pacer>(real_time_factor_, publish_rate_, ros::WallTime::now().toSec(),
+                                              sim_->time());
     diag_wall_ = ros::WallTime::now().toSec();
     diag_cpu_ = process_cpu_seconds();
 
@@ -177,9 +179,11 @@ class TopSimNode {
     return true;
   }
 
-  // The publish loop on the main thread: the callbacks that arrived (commands first, so the tick right after
-  // applies and publishes them), one tick, then sleep to the next period. (A WallTimer hands every tick from
-  // roscpp's timer thread to the spinner: at 1 kHz those context switches cost more CPU than the simulation.)
+  // The publish loop on the main thread: the callbacks that arrived (commands and services, answered at once; the
+  // tick right after applies and publishes the commands), one tick, then sleep to the next period. The physics of
+  // a tick is bounded by the Pacer's budget (half the period), so the loop keeps its rate whatever the scene costs.
+  // (A WallTimer hands every tick from roscpp's timer thread to the spinner: at 1 kHz those context switches cost
+  // more CPU than the simulation.)
   void run() {
     ros::WallTime next = ros::WallTime::now();
     while (ros::ok()) {
@@ -195,51 +199,45 @@ class TopSimNode {
   }
 
  private:
-  // ---- pacing ---------------------------------------------------------------------------------------------
-  void anchor() {
-    anchor_wall_ = ros::WallTime::now().toSec();
-    anchor_sim_ = sim_->time();
-  }
-
+  // ---- pacing (top_sim::Pacer, include/top_sim/pacing.hpp) -------------------------------------------------
   void tick() {
     const double wall = ros::WallTime::now().toSec();
     const double cpu0 = thread_cpu_seconds();
     const std::size_t steps0 = sim_->stats().steps;
-    if (paused_ || sim_->fault() != top_sim::ContactFault::none) {
+    const bool running = !paused_ && sim_->fault() == top_sim::ContactFault::none;
+    if (!running) {
       sim_->advance_to(sim_->time());  // applies pending commands without moving time
-    } else if (real_time_factor_ > 0.0) {
-      double target = anchor_sim_ + real_time_factor_ * (wall - anchor_wall_);
-      // Fallen behind by more than half a wall second (CPU starved): drop the debt instead of bursting.
-      if (target - sim_->time() > 0.5 * real_time_factor_) {
-        anchor();
-        target = sim_->time() + real_time_factor_ / publish_rate_;
-        anchor_sim_ = target;
-      }
-      sim_->advance_to(target);
     } else {
-      // As fast as possible: chunks of simulated time until about half the publish period is spent.
-      const double budget = 0.5 / publish_rate_;
-      do {
-        const double w0 = ros::WallTime::now().toSec();
-        sim_->advance_to(sim_->time() + chunk_);
-        const double took = ros::WallTime::now().toSec() - w0;
-        if (took < 0.1 * budget) chunk_ = std::min(chunk_ * 2.0, 10.0);
-        else if (took > 0.3 * budget) chunk_ = std::max(chunk_ * 0.5, 1e-6);
-      } while (ros::WallTime::now().toSec() - wall < budget && sim_->fault() == top_sim::ContactFault::none);
+      const top_sim::Pacer::Tick t = pacer_->plan(wall, sim_->time());
+      sim_->advance_to(t.target, t.budget);  // returns within about the budget, at t.target or short of it
     }
     step_cpu_ += thread_cpu_seconds() - cpu0;
     steps_ += sim_->stats().steps - steps0;
     report_fault();
-    update_achieved_factor(wall);
+    pacer_->record(wall, sim_->time(), running);
+    report_pacing();
+    flush_rejections(wall);
     publish(wall);
     updater_.update();
   }
 
-  void update_achieved_factor(double wall) {
-    history_.emplace_back(wall, sim_->time());
-    while (history_.size() > 2 && wall - history_[1].first >= 1.0) history_.pop_front();
-    const double dw = wall - history_.front().first;
-    achieved_factor_ = dw > 0.0 ? (sim_->time() - history_.front().second) / dw : 0.0;
+  // One log line per change of the Pacer's behind state (the diagnostics say it continuously).
+  void report_pacing() {
+    if (pacer_->behind() == reported_behind_) return;
+    reported_behind_ = pacer_->behind();
+    if (reported_behind_)
+      ROS_WARN("top_sim_node: %s (the physics gets %.3g ms of each %.3g ms period; debt beyond %.2g s is dropped)",
+               behind_text().c_str(), 1e3 * pacer_->budget(), 1e3 / publish_rate_, pacer_->options().max_debt);
+    else
+      ROS_INFO("top_sim_node: caught up: achieved real-time factor %.4g of requested %.4g",
+               pacer_->achieved_factor(), real_time_factor_);
+  }
+
+  std::string behind_text() const {
+    std::ostringstream os;
+    os.precision(3);
+    os << "falling behind: achieved " << pacer_->achieved_factor() << " of requested " << real_time_factor_;
+    return os.str();
   }
 
   void report_fault() {
@@ -259,7 +257,7 @@ class TopSimNode {
     const ros::Time stamp(stamp_origin_ + s.t);
     top_sim::TopState msg;
     top_sim_ros::to_msg(s, stamp, frames_.plane, msg);
-    msg.real_time_factor = achieved_factor_;
+    msg.real_time_factor = pacer_->achieved_factor();
     msg.requested_real_time_factor = real_time_factor_;
     msg.paused = paused_;
     state_pub_.publish(msg);
@@ -277,7 +275,7 @@ class TopSimNode {
       }
     }
 #ifdef TOP_SIM_HAVE_LCM
-    if (lcm_ && !lcm_->publish(s, achieved_factor_) && !lcm_send_failed_) {
+    if (lcm_ && !lcm_->publish(s, pacer_->achieved_factor()) && !lcm_send_failed_) {
       ROS_ERROR("top_sim_node: LCM publish on %s failed (reported once)", lcm_->channel().c_str());
       lcm_send_failed_ = true;
     }
@@ -327,16 +325,20 @@ class TopSimNode {
     const double publish_hz = dw > 0.0 ? (published_ - diag_published_) / dw : 0.0;
     if (sim_->fault() != top_sim::ContactFault::none)
       st.summary(diagnostic_msgs::DiagnosticStatus::ERROR, "contact fault: " + sim_->fault_message());
-    else if (!paused_ && real_time_factor_ > 0.0 &&
-             std::abs(achieved_factor_ - real_time_factor_) > 0.05 * real_time_factor_)
-      st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "real-time factor not reached");
+    else if (pacer_->behind())
+      st.summary(diagnostic_msgs::DiagnosticStatus::WARN, behind_text());
     else if (lcm_status_.rfind("error", 0) == 0)
       st.summary(diagnostic_msgs::DiagnosticStatus::WARN, "LCM off: " + lcm_status_);
     else
       st.summary(diagnostic_msgs::DiagnosticStatus::OK, paused_ ? "paused" : "running");
     st.add("simulated time [s]", s.t);
     st.add("requested real-time factor", real_time_factor_);
-    st.add("achieved real-time factor", achieved_factor_);
+    st.add("achieved real-time factor", pacer_->achieved_factor());
+    st.add("behind", pacer_->behind());
+    st.add("physics budget per tick [ms]", 1e3 * pacer_->budget());
+    st.add("debt drops (more than 0.5 s behind)", pacer_->debt_drops());
+    st.add("dropped simulated time [s]", pacer_->dropped_sim_seconds());
+    st.add("rejected commands", rejected_total_);
     st.add("publish rate requested [Hz]", publish_rate_);
     st.add("publish rate achieved [Hz]", publish_hz);
     st.add("integrator steps (window)", steps_);
@@ -345,6 +347,8 @@ class TopSimNode {
     st.add("energy balance residual", s.energy_balance_residual);
     st.add("max energy balance residual", sim_->max_energy_residual());
     st.add("regime", top_sim::to_string(s.regime));
+    st.add("contact mode", top_sim::to_string(s.contact_mode));
+    st.add("gap [m]", s.gap);
     st.add("alpha [rad]", s.alpha);
     st.add("spin [rad/s]", s.spin);
     st.add("paused", paused_);
@@ -361,7 +365,7 @@ class TopSimNode {
   bool submit(const top_sim::Command& c, const char* source) {
     const std::string error = sim_->submit(c);
     if (!error.empty()) {
-      ROS_WARN("top_sim_node: %s rejected: %s", source, error.c_str());
+      warn_rejected(std::string(source) + " rejected: " + error);
       return false;
     }
     // Keep dynamic_reconfigure showing the live values.
@@ -370,6 +374,31 @@ class TopSimNode {
     if (c.friction) friction_to_config(*c.friction, config_);
     if (c.inclination || c.spin || c.friction) config_dirty_ = true;  // pushed by a slow timer, off the command path
     return true;
+  }
+
+  // Rejected-command warnings, throttled: the first in full, then at most one per wall second, which names the
+  // last rejection and counts the ones suppressed since the previous warning (a flood of bad commands must not
+  // flood /rosout). A pending count is flushed by the loop once the second is over.
+  void warn_rejected(const std::string& text) {
+    ++rejected_total_;
+    const double wall = ros::WallTime::now().toSec();
+    flush_rejections(wall);  // a pending count goes out first (and starts a new second)
+    if (wall - last_reject_warn_ >= kRejectWarnPeriod) {
+      ROS_WARN("top_sim_node: %s", text.c_str());
+      last_reject_warn_ = wall;
+      suppressed_rejects_ = 0;
+    } else {
+      ++suppressed_rejects_;
+      last_reject_text_ = text;
+    }
+  }
+
+  void flush_rejections(double wall) {
+    if (suppressed_rejects_ == 0 || wall - last_reject_warn_ < kRejectWarnPeriod) return;
+    ROS_WARN("top_sim_node: %zu more commands rejected in the last %.1f s (warnings suppressed); the last: %s",
+             suppressed_rejects_, wall - last_reject_warn_, last_reject_text_.c_str());
+    last_reject_warn_ = wall;
+    suppressed_rejects_ = 0;
   }
 
   void on_inclination(const std_msgs::Float64::ConstPtr& m) {
@@ -388,7 +417,7 @@ class TopSimNode {
     std::string error;
     const top_sim::Command c = top_sim_ros::to_command(*m, error);
     if (!error.empty()) {
-      ROS_WARN("top_sim_node: command rejected: %s", error.c_str());
+      warn_rejected("command rejected: " + error);
       return;
     }
     submit(c, "command");
@@ -399,7 +428,7 @@ class TopSimNode {
     sim_->reset();
     path_.poses.clear();
     fault_reported_ = false;
-    anchor();
+    pacer_->reanchor(ros::WallTime::now().toSec(), sim_->time(), false);  // time keeps running: keep the window
     config_.alpha = scene_.model.plane.inclination;
     config_.spin = scene_.initial.spin;
     friction_to_config(scene_.model.friction, config_);
@@ -415,8 +444,7 @@ class TopSimNode {
   bool on_pause(std_srvs::SetBool::Request& req, std_srvs::SetBool::Response& res) {
     if (paused_ != static_cast<bool>(req.data)) {
       paused_ = req.data;
-      anchor();
-      history_.clear();
+      pacer_->reanchor(ros::WallTime::now().toSec(), sim_->time());
     }
     res.success = true;
     res.message = paused_ ? "paused" : "running";
@@ -477,8 +505,7 @@ class TopSimNode {
     if (level & 4) {
       if (std::isfinite(cfg.real_time_factor) && cfg.real_time_factor >= 0.0) {
         real_time_factor_ = cfg.real_time_factor;
-        anchor();
-        history_.clear();
+        pacer_->set_real_time_factor(real_time_factor_, ros::WallTime::now().toSec(), sim_->time());
       } else {
         ROS_WARN("top_sim_node: %s", rate_error("real_time_factor", cfg.real_time_factor, ">= 0").c_str());
       }
@@ -487,6 +514,7 @@ class TopSimNode {
     if (level & 8) {
       if (std::isfinite(cfg.publish_rate) && cfg.publish_rate > 0.0 && cfg.publish_rate <= kMaxPublishRate) {
         publish_rate_ = cfg.publish_rate;  // run() reads it every period
+        pacer_->set_rate(publish_rate_);     // the physics budget is a fraction of the period
       } else {
         ROS_WARN("top_sim_node: %s", rate_error("publish_rate", cfg.publish_rate, "in (0, 10000] Hz").c_str());
       }
@@ -524,10 +552,13 @@ class TopSimNode {
   bool lcm_send_failed_ = false;
 #endif
 
-  double stamp_origin_ = 0.0, anchor_wall_ = 0.0, anchor_sim_ = 0.0, chunk_ = 1e-3;
-  bool paused_ = false, fault_reported_ = false;
-  std::deque<std::pair<double, double>> history_;  // (wall, sim) over the last second
-  double achieved_factor_ = 0.0;
+  double stamp_origin_ = 0.0;
+  std::unique_ptr<top_sim::Pacer> pacer_;
+  bool paused_ = false, fault_reported_ = false, reported_behind_ = false;
+  static constexpr double kRejectWarnPeriod = 1.0;  // wall seconds between rejected-command warnings
+  double last_reject_warn_ = -1e9;
+  std::size_t suppressed_rejects_ = 0, rejected_total_ = 0;
+  std::string last_reject_text_;
   ros::Time last_tf_stamp_;
   nav_msgs::Path path_;
   double last_marker_wall_ = 0.0, last_path_wall_ = 0.0;
