@@ -10,6 +10,7 @@
 #include <thread>
 
 #include "run_output.hpp"
+#include "top_sim/pacing.hpp"
 #include "top_sim/scene.hpp"
 #ifdef TOP_SIM_HAVE_LCM
 #include "lcm_publisher.hpp"
@@ -120,18 +121,30 @@ int main(int argc, char** argv) {
       std::cerr << "top_sim_run: --lcm = '" << lcm_url << "': " << lcm->error() << "\n";
       return 2;
     }
-    // Real time: each sample waits for its wall-clock instant, then goes out on LCM.
+    // Real time (factor 1), paced by top_sim::Pacer like top_sim_node: each sample waits for its wall-clock
+    // instant, then goes out on LCM with the achieved factor of the last wall second. A sample more than 0.5 s
+    // late re-anchors the clock (the debt is dropped) instead of rushing the backlog out.
     using clock = std::chrono::steady_clock;
     const clock::time_point wall0 = clock::now();
-    const double t0 = sim.time();
+    auto wall_now = [wall0] { return std::chrono::duration<double>(clock::now() - wall0).count(); };
+    auto pacer = std::make_shared<Pacer>(1.0, rate, 0.0, sim.time());
     auto write_csv = opt.on_sample;
     opt.sample_rate = rate;
-    opt.on_sample = [&, write_csv, wall0, t0](const Snapshot& s) {
+    opt.on_sample = [&, write_csv, wall0, wall_now, pacer](const Snapshot& s) {
+      const double at = pacer->due(wall_now(), s.t);
       std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(
-                                                std::chrono::duration<double>(s.t - t0)));
-      const double wall = std::chrono::duration<double>(clock::now() - wall0).count();
+                                                std::chrono::duration<double>(at)));
+      const bool was_behind = pacer->behind();
+      pacer->record(wall_now(), s.t);
+      if (pacer->behind() != was_behind) {
+        if (pacer->behind())
+          std::cerr << "top_sim_run: falling behind: achieved " << pacer->achieved_factor()
+                    << " of requested 1 at t = " << s.t << " s\n";
+        else
+          std::cerr << "top_sim_run: caught up at t = " << s.t << " s\n";
+      }
       static bool warned = false;  // one message, not one per sample
-      if (!lcm->publish(s, wall > 0.0 ? (s.t - t0) / wall : 1.0) && !warned && (warned = true))
+      if (!lcm->publish(s, pacer->achieved_factor()) && !warned && (warned = true))
         std::cerr << "top_sim_run: LCM publish on " << lcm_channel << " failed at t = " << s.t << " s\n";
       if (write_csv) write_csv(s);
     };
