@@ -127,6 +127,87 @@ TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
   EXPECT_EQ(m.sim_time, 2.5);
 }
 
+TEST(TopStateMsg, ContactModeAndGapAreMapped) {
+  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::slipping), top_sim::TopState::SLIPPING);
+  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::rolling), top_sim::TopState::ROLLING);
+  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::flight), top_sim::TopState::FLIGHT);
+  const struct {
+    top_sim::ContactMode mode;
+    uint8_t code;
+    const char* name;
+    double gap;
+  } cases[] = {{top_sim::ContactMode::slipping, top_sim::TopState::SLIPPING, "slipping", 0.0},
+               {top_sim::ContactMode::rolling, top_sim::TopState::ROLLING, "rolling", 0.0},
+               {top_sim::ContactMode::flight, top_sim::TopState::FLIGHT, "flight", 2.5e-4}};
+  for (const auto& k : cases) {
+    top_sim::Snapshot s;
+    s.contact_mode = k.mode;
+    s.gap = k.gap;
+    top_sim::TopState m;
+    top_sim_ros::to_msg(s, ros::Time(1.0), "plane", m);
+    EXPECT_EQ(m.contact_mode, k.code) << k.name;
+    EXPECT_EQ(m.contact_mode_name, k.name);
+    EXPECT_EQ(m.gap, k.gap) << k.name;
+  }
+  top_sim::Snapshot s;
+  s.gap = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_FALSE(top_sim_ros::all_finite(s)) << "a NaN gap must not be published";
+}
+
+TEST(Markers, ContactModeShowsAsBodyColourAndText) {
+  top_sim::Top top;
+  top.mass = 0.025;
+  top.inertia_axial = 5e-6;
+  top.tip_radius = 1.5e-3;
+  top.com_offset = 0.01;
+  auto find = [](const visualization_msgs::MarkerArray& a, const std::string& ns) {
+    for (const auto& m : a.markers)
+      if (m.ns == ns) return m;
+    ADD_FAILURE() << "no marker " << ns;
+    return visualization_msgs::Marker();
+  };
+  visualization_msgs::MarkerArray slipping, rolling, flight;
+  top_sim::Snapshot s;
+  s.contact_mode = top_sim::ContactMode::slipping;
+  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), slipping);
+  s.contact_mode = top_sim::ContactMode::rolling;
+  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), rolling);
+  s.contact_mode = top_sim::ContactMode::flight;
+  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), flight);
+  EXPECT_EQ(find(slipping, "contact_mode").text, "slipping");
+  EXPECT_EQ(find(rolling, "contact_mode").text, "rolling");
+  EXPECT_EQ(find(flight, "contact_mode").text, "flight");
+  EXPECT_EQ(find(flight, "contact_mode").type, visualization_msgs::Marker::TEXT_VIEW_FACING);
+  const auto a = find(slipping, "body").color, b = find(rolling, "body").color, c = find(flight, "body").color;
+  EXPECT_TRUE(a.r != b.r || a.g != b.g || a.b != b.b) << "slipping and rolling look the same";
+  EXPECT_TRUE(b.r != c.r || b.g != c.g || b.b != c.b) << "rolling and flight look the same";
+  EXPECT_TRUE(a.r != c.r || a.g != c.g || a.b != c.b) << "slipping and flight look the same";
+}
+
+TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
+  top_sim::TopCommand m;
+  m.set_static_friction = true;
+  m.static_friction = 0.4;
+  m.restitution = 0.7;  // not set: ignored
+  std::string error;
+  top_sim::Command c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.static_friction);
+  EXPECT_EQ(*c.static_friction, 0.4);
+  EXPECT_FALSE(c.restitution);
+  EXPECT_FALSE(c.empty());
+
+  m.set_static_friction = false;
+  m.set_restitution = true;
+  m.restitution = 1.5;  // out of [0, 1]: the adapter carries it, the core's validation rejects it
+  c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.restitution);
+  EXPECT_EQ(*c.restitution, 1.5);
+  EXPECT_FALSE(c.static_friction);
+  EXPECT_FALSE(c.inclination);
+}
+
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();

@@ -1,6 +1,8 @@
 // rostest (lcm.test): top_sim.top_state_t arrives over LCM from the node; a node whose LCM cannot open logs
 // one clear error and keeps publishing on ROS.
 #include <gtest/gtest.h>
+
+#include <string>
 #include <ros/ros.h>
 
 #include <cmath>
@@ -43,6 +45,13 @@ TEST(Lcm, NodeStateArrivesOnTheChannel) {
   EXPECT_GE(int(m.regime), int(top_sim::top_state_t::NUTATING));  // int(): the constants have no definition
   EXPECT_LE(int(m.regime), int(top_sim::top_state_t::CONTACT_FAULT));
   EXPECT_GT(m.real_time_factor, 0.5);
+  // Contact mode: the code and its name agree; the gap is 0 in contact and positive only in flight.
+  const std::string names[] = {"slipping", "rolling", "flight"};
+  ASSERT_GE(int(m.contact_mode), int(top_sim::top_state_t::SLIPPING));
+  ASSERT_LE(int(m.contact_mode), int(top_sim::top_state_t::FLIGHT));
+  EXPECT_EQ(m.contact_mode_name, names[int(m.contact_mode)]);
+  EXPECT_GE(m.gap, 0.0);
+  if (int(m.contact_mode) != int(top_sim::top_state_t::FLIGHT)) EXPECT_EQ(m.gap, 0.0);
 }
 
 TEST(Lcm, UnopenableUrlIsReportedAndRosKeepsPublishing) {

@@ -292,10 +292,16 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
        {"friction.mu_c = -0.2", "> 0"}},
       {cmd([](top_sim::TopCommand& c) { c.set_friction = true; c.friction_law = "viscous"; }),
        {"friction_law = 'viscous'"}},
+      {cmd([](top_sim::TopCommand& c) { c.set_restitution = true; c.restitution = 1.5; }),
+       {"restitution = 1.5", "[0, 1]"}},
+      {cmd([](top_sim::TopCommand& c) { c.set_static_friction = true; c.static_friction = -0.1; }),
+       {"static_friction = -0.1", ">= mu(0)"}},
       // One bad field rejects the whole command: the valid inclination must not be applied either.
       {cmd([nan](top_sim::TopCommand& c) { c.set_inclination = true; c.inclination = 0.05; c.set_spin = true; c.spin = nan; }),
        {"spin = ", "nan"}},
   };
+  // Warnings are throttled (the first in full, then at most one per second naming the last rejection), so each
+  // case waits up to about a second for its warning.
   const Received before = mon.latest();
   for (const Case& k : cases) {
     const std::size_t w = mon.warning_count();
