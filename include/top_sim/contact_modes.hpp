@@ -25,6 +25,7 @@ struct ModeSwitch {
   ModeSwitchKind kind = ModeSwitchKind::lift_off;
   ContactMode from = ContactMode::slipping;
   ContactMode to = ContactMode::slipping;
+  double energy_change = 0.0;  // E after - E before the switch (the stick impulse or the impact; <= 0) [J]
 };
 
 // The contact point's response of section 9: d/dt v_c = K F - b, dv_c = K P.

@@ -66,10 +66,10 @@ class Simulator {
   void restart_stepper(bool rebase_energy);
   void apply_now(const Command& c);
   void apply_pending();
-  bool check_step();
+  bool scan_events(double t_end);
   int fired(const ModeMargins& m, const StateVector& y) const;
   void handle_event(int event, const ModeMargins& m);
-  void switch_mode(ContactMode mode, ModeSwitchKind kind);
+  void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
   void update_regime();
@@ -91,7 +91,8 @@ class Simulator {
   Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
 
   ContactMode mode_ = ContactMode::slipping;
-  ModeMargins last_margins_;          // at the end of the last accepted step (or the restart)
+  ModeMargins last_margins_;          // at scanned_
+  double scanned_ = 0.0;              // the current step's dense output is scanned for events up to here
   bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
   double mode_since_ = 0.0;
   std::array<double, kContactModeCount> mode_seconds_{};

@@ -158,7 +158,8 @@ std::string summary_json(const Scene& scene, const RunResult& r) {
   for (std::size_t i = 0; i < r.mode_switches.size(); ++i) {
     const ModeSwitch& m = r.mode_switches[i];
     os << (i ? ",\n    " : "\n    ") << "{\"t\": " << num(m.t) << ", \"kind\": " << quoted(to_string(m.kind))
-       << ", \"from\": " << quoted(to_string(m.from)) << ", \"to\": " << quoted(to_string(m.to)) << "}";
+       << ", \"from\": " << quoted(to_string(m.from)) << ", \"to\": " << quoted(to_string(m.to))
+       << ", \"energy_change\": " << num(m.energy_change) << "}";
   }
   os << (r.mode_switches.empty() ? "]\n" : "\n  ]\n") << "}\n";
   return os.str();

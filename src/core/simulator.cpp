@@ -51,10 +51,12 @@ double sample_spacing(const Model& model, const StateVector& y) {
   return 2.0 * M_PI * top.inertia_transverse / axial / kSamplesPerNutation;
 }
 
-bool near_threshold(const ModeMargins& m, ContactMode mode) {
+bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) {
   if (mode == ContactMode::flight) return true;
+  const double weight = model.top.mass * model.plane.gravity;  // lift is a force; transfer is already in weights
   const double transfer_guard = mode == ContactMode::slipping ? kStickGuard : kForceGuard;
-  return m.lift < kForceGuard || m.transfer < transfer_guard || m.painleve < kPainleveGuard || m.tilt < kTiltGuard;
+  return m.lift < kForceGuard * weight || m.transfer < transfer_guard || m.painleve < kPainleveGuard ||
+         m.tilt < kTiltGuard;
 }
 
 std::string impact_painleve_message(double t, double denominator) {
@@ -122,6 +124,7 @@ void Simulator::restart_stepper(bool rebase_energy) {
   if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y_);
   if (rebase_energy) balance_.rebase(model_, y_);
   stepper_->reset(y_, t_);
+  scanned_ = t_;
   last_margins_ = margins_of(model_, mode_, y_);
   lift_armed_ = last_margins_.lift > 0.0;
   transfer_armed_ = last_margins_.transfer > 0.0;
@@ -173,13 +176,14 @@ void Simulator::reclose_contact() {
   const ContactMode before = mode_;
   const double e0 = mechanical_energy(model_, y_);
   const ClosingResult c = close_contact(model_, y_);
-  y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);  // the stick impulse's loss, if any
+  const double loss = e0 - mechanical_energy(model_, y_);  // the stick impulse's loss, if any
+  y_[idx::w_diss] += loss;
   if (c.painleve) return;  // restart_stepper() reports it from the margins
   if (c.mode != before) {
     const ModeSwitchKind kind = c.mode == ContactMode::flight  ? ModeSwitchKind::lift_off
                                 : c.mode == ContactMode::rolling ? ModeSwitchKind::stick
                                                                  : ModeSwitchKind::slip;
-    switch_mode(c.mode, kind);
+    switch_mode(c.mode, kind, -loss);
   }
 }
 
@@ -210,28 +214,36 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
     double t_stop = t_target;
     if (next_event_ < scene_.events.size()) t_stop = std::min(t_stop, t_origin_ + scene_.events[next_event_].t);
     try {
-      while (stepper_->time() < t_stop) {
-        stepper_->step(t_stop);
-        if (!check_step()) {  // an event moved the state to its instant (or a fault stopped the top)
+      for (;;) {
+        // Events are scanned on the dense output up to t_stop only: an event beyond it waits for the next call.
+        const double t_scan = std::min(stepper_->time(), t_stop);
+        if (scanned_ < t_scan && !scan_events(t_scan)) {
           if (fault_ != ContactFault::none) break;
-          continue;
+          continue;  // the state is at the event; the stepper restarted there
         }
-        if (budgeted && stepper_->time() < t_stop && Clock::now() >= deadline) {
-          y_ = stepper_->state();  // a step boundary: the stepper continues from here next time
+        if (t_scan >= t_stop) break;
+        if (budgeted && Clock::now() >= deadline && stepper_->time() > t_) {
+          y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
           t_ = stepper_->time();
           update_regime();
           return false;
+        }
+        stepper_->step(t_stop);
+        if (!all_finite(stepper_->state())) {
+          t_ = stepper_->previous_time();
+          stepper_->state_at(t_, y_);
+          fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
+          break;
         }
       }
     } catch (const std::exception& e) {  // odeint gives up when it cannot find an acceptable step
       fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, stepper_->time()) + " (" + e.what() + ")");
     }
     if (fault_ != ContactFault::none) break;
-    if (stepper_->time() > t_stop) {
+    if (stepper_->time() > t_stop)
       stepper_->state_at(t_stop, y_);
-    } else {
+    else
       y_ = stepper_->state();
-    }
     t_ = t_stop;
   }
   if (fault_ == ContactFault::none) apply_pending();  // events due exactly at t_target take effect now
@@ -254,31 +266,28 @@ int Simulator::fired(const ModeMargins& m, const StateVector& y) const {
   return kNoEvent;
 }
 
-// Checks the accepted step for events on the dense output. Returns true when the step stands; otherwise the
-// state is at the located event (or fault) instant, the event is handled and the stepper restarted.
-bool Simulator::check_step() {
-  const StateVector& y1 = stepper_->state();
-  const double t0 = stepper_->previous_time(), t1 = stepper_->time();
-  if (!all_finite(y1)) {
-    t_ = t0;
-    stepper_->state_at(t_, y_);
-    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
-    return false;
-  }
+// Scans the last step's dense output from scanned_ to t_end for events. Returns true when none fired; otherwise
+// the state is at the located event (or fault) instant, the event is handled and the stepper restarted.
+bool Simulator::scan_events(double t_end) {
+  const double t0 = scanned_;
+  StateVector y1;
+  if (t_end >= stepper_->time()) y1 = stepper_->state(); else stepper_->state_at(t_end, y1);
   max_residual_ = std::max(max_residual_, balance_.residual(model_, y1));
-  if (model_.kind != ModelKind::full) return true;
-
+  if (model_.kind != ModelKind::full) {
+    scanned_ = t_end;
+    return true;
+  }
   const ModeMargins m1 = margins_of(model_, mode_, y1);
   int samples = 1;
-  if (near_threshold(last_margins_, mode_) || near_threshold(m1, mode_)) {
-    const double n = std::ceil((t1 - t0) / sample_spacing(model_, y1));
+  if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
+    const double n = std::ceil((t_end - t0) / sample_spacing(model_, y1));
     samples = static_cast<int>(std::min<double>(std::isfinite(n) ? n : 1.0, kMaxSamplesPerStep));
     samples = std::max(samples, mode_ == ContactMode::flight ? kMinFlightSamples : 1);
   }
   double t_prev = t0;
   StateVector yk;
   for (int k = 1; k <= samples; ++k) {
-    const double tk = k == samples ? t1 : t0 + (t1 - t0) * k / samples;
+    const double tk = k == samples ? t_end : t0 + (t_end - t0) * k / samples;
     if (k == samples) yk = y1; else stepper_->state_at(tk, yk);
     const ModeMargins mk = k == samples ? m1 : margins_of(model_, mode_, yk);
     if (fired(mk, yk) != kNoEvent) {
@@ -303,6 +312,7 @@ bool Simulator::check_step() {
     t_prev = tk;
   }
   last_margins_ = m1;
+  scanned_ = t_end;
   return true;
 }
 
@@ -318,8 +328,9 @@ void Simulator::handle_event(int event, const ModeMargins& m) {
       if (mode_ == ContactMode::slipping) {
         const double e0 = mechanical_energy(model_, y_);
         apply_stick_impulse(model_, y_);
-        y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);
-        switch_mode(ContactMode::rolling, ModeSwitchKind::stick);
+        const double loss = e0 - mechanical_energy(model_, y_);
+        y_[idx::w_diss] += loss;
+        switch_mode(ContactMode::rolling, ModeSwitchKind::stick, -loss);
       } else {
         switch_mode(ContactMode::slipping, ModeSwitchKind::slip);  // starts with v_t = 0
       }
@@ -349,8 +360,9 @@ void Simulator::handle_event(int event, const ModeMargins& m) {
           }
           next = c.mode;
         }
-        y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
-        switch_mode(next, ModeSwitchKind::touchdown);
+        const double loss = e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
+        y_[idx::w_diss] += loss;
+        switch_mode(next, ModeSwitchKind::touchdown, -loss);
       }
       break;
     default:
@@ -359,10 +371,10 @@ void Simulator::handle_event(int event, const ModeMargins& m) {
   if (fault_ == ContactFault::none) restart_stepper(false);
 }
 
-void Simulator::switch_mode(ContactMode mode, ModeSwitchKind kind) {
+void Simulator::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {
   mode_seconds_[static_cast<int>(mode_)] += t_ - mode_since_;
   mode_since_ = t_;
-  if (switches_.size() < kMaxPendingSwitches) switches_.push_back({t_, kind, mode_, mode});
+  if (switches_.size() < kMaxPendingSwitches) switches_.push_back({t_, kind, mode_, mode, energy_change});
   ++switch_count_;
   mode_ = mode;
   instant_switches_ = t_ - last_switch_t_ > 1e-12 * std::max(1.0, std::abs(t_)) ? 0 : instant_switches_ + 1;
