@@ -228,6 +228,8 @@ class TopSimNode {
     if (reported_behind_)
       ROS_WARN("top_sim_node: %s (the physics gets %.3g ms of each %.3g ms period; debt beyond %.2g s is dropped)",
                behind_text().c_str(), 1e3 * pacer_->budget(), 1e3 / publish_rate_, pacer_->options().max_debt);
+    else if (paused_ || sim_->fault() != top_sim::ContactFault::none)
+      ROS_INFO("top_sim_node: %s: no longer falling behind", paused_ ? "paused" : "stopped by a contact fault");
     else
       ROS_INFO("top_sim_node: caught up: achieved real-time factor %.4g of requested %.4g",
                pacer_->achieved_factor(), real_time_factor_);
