@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cmath>
 #include <string>
 
 #include "top_sim/model.hpp"
@@ -17,7 +18,19 @@ struct ContactKinematics {
   double slip = 0.0;                                // s in [0, 1]
 };
 
-ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega);
+// Inline: every right-hand side starts here.
+inline ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
+  ContactKinematics k;
+  const double R = model.top.tip_radius;
+  const double v_eps = model.regularization_speed;
+  const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
+  k.v_t = u - R * omega_x_n;
+  k.rolling_speed = R * omega_x_n.norm();
+  const double vt = k.v_t.norm();
+  k.slip = vt / (u.norm() + k.rolling_speed + v_eps);
+  k.t_hat = k.v_t / std::sqrt(vt * vt + v_eps * v_eps);
+  return k;
+}
 
 // Faults stop the top (physics.md sections 4 and 9); lift-off is not a fault but a switch to flight.
 enum class ContactFault { none, painleve, fallen, numerical };

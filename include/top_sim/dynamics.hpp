@@ -29,14 +29,28 @@ struct Dynamics {
 // Full evaluation in `mode`, including the margins of that mode.
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out);
 
+// The contact force of one right-hand side, kept so that the event margins at a step's end can reuse the
+// evaluation an FSAL method (dopri5) has just made there.
+struct ContactForceRecord {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // F (N = F.z())
+  double painleve = ModeMargins::kNone;
+};
+
 // dy/dt of the full model in `mode` with the model's normal-force choice (allocation-free).
-void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt);
+void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                ContactForceRecord* record = nullptr);
+
+// The margins of `mode` from a recorded contact force (no dynamics evaluation); equal to evaluate_dynamics()'s
+// except the stick function of a slipping contact with mu_s > 0, which needs the rolling force (returns false).
+bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
+                         double cos_max_tilt, ModeMargins& out);
 
 // Finite-difference step bounds for a Jacobian: u and omega must not step across the friction kink, whose
 // width is max(|v_t|, v_eps) in the contact velocity (0 = no bound, < 0 = the column is identically zero).
 void jacobian_difference_steps(const Model& model, ContactMode mode, const StateVector& y, StateVector& max_step);
 
 // dy/dt for whichever model kind the model selects (full or adiabatic).
-void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt);
+void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record = nullptr);
 
 }  // namespace top_sim

@@ -13,6 +13,7 @@
 
 #include "top_sim/command.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/dynamics.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/scene.hpp"
@@ -67,6 +68,7 @@ class Simulator {
   void apply_now(const Command& c);
   void apply_pending();
   bool scan_events(double t_end);
+  ModeMargins step_end_margins(const StateVector& y);
   int fired(const ModeMargins& m, const StateVector& y) const;
   void handle_event(int event, const ModeMargins& m);
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
@@ -92,6 +94,10 @@ class Simulator {
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_
+  StateVector record_y_{};            // the state of the last right-hand side and its contact force
+  ContactForceRecord record_;
+  bool record_valid_ = false;
+  double cos_max_tilt_ = 1.0;
   double scanned_ = 0.0;              // the current step's dense output is scanned for events up to here
   bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
   double mode_since_ = 0.0;

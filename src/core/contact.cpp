@@ -6,19 +6,6 @@
 
 namespace top_sim {
 
-ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
-  ContactKinematics k;
-  const double R = model.top.tip_radius;
-  const double v_eps = model.regularization_speed;
-  const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
-  k.v_t = u - R * omega_x_n;
-  k.rolling_speed = R * omega_x_n.norm();
-  const double vt = k.v_t.norm();
-  k.slip = vt / (u.norm() + k.rolling_speed + v_eps);
-  k.t_hat = k.v_t / std::sqrt(vt * vt + v_eps * v_eps);
-  return k;
-}
-
 const char* to_string(ContactFault fault) {
   switch (fault) {
     case ContactFault::none: return "none";

@@ -13,14 +13,15 @@ namespace top_sim {
 
 namespace {
 
-// Slipping (sections 3-4): F = N d, d = n - mu t_hat, N the multiplier keeping n . a_m = 0.
+// Slipping (sections 3-4): F = N d, d = n - mu t_hat, N the multiplier keeping n . a_m = 0. Sets omega_dot too
+// (N I'^-1 (rho x d) - I'^-1 G), reusing I'^-1 (rho x d) from the multiplier.
 void slipping_force(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
   out.mu = friction_coefficient(model.friction, out.contact.slip);
   const Eigen::Vector3d d(-out.mu * out.contact.t_hat.x(), -out.mu * out.contact.t_hat.y(), 1.0);
+  const Eigen::Vector3d Ii_rxd = b.inverse_inertia(b.rho.cross(d));
   double N;
   if (model.normal_force == NormalForceModel::constrained) {
     // Section 4: N (1/m - f A) = -n.g + f (C - B); equal to n.b / (n.K d) of section 9.
-    const Eigen::Vector3d Ii_rxd = b.inverse_inertia(b.rho.cross(d));
     const double A = Ii_rxd.cross(b.f_hat).z();
     const double B = b.Ii_G.cross(b.f_hat).z();
     const double denominator = 1.0 / b.m - b.f * A;
@@ -34,6 +35,7 @@ void slipping_force(const Model& model, const detail::RigidBody& b, Dynamics& ou
   }
   out.normal_force = N;
   out.contact_force = N * d;
+  out.omega_dot = N * Ii_rxd - b.Ii_G;
   out.dissipation = out.mu * N * out.contact.t_hat.dot(out.contact.v_t);
 }
 
@@ -46,26 +48,39 @@ void rolling_contact_force(const detail::RigidBody& b, Dynamics& out) {
   out.dissipation = 0.0;
 }
 
-void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double& painleve) {
+// One mode's motion; a template so that the hot slipping path compiles without the other modes' code.
+template <ContactMode kMode>
+void motion(const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
   const detail::RigidBody b(model, y);
   out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
   painleve = ModeMargins::kNone;
-  switch (mode) {
-    case ContactMode::slipping: slipping_force(model, b, out, painleve); break;
-    case ContactMode::rolling: rolling_contact_force(b, out); break;
-    case ContactMode::flight:
+  if constexpr (kMode == ContactMode::slipping) {
+    slipping_force(model, b, out, painleve);
+  } else {
+    if constexpr (kMode == ContactMode::rolling) {
+      rolling_contact_force(b, out);
+    } else {
       out.mu = 0.0;
       out.normal_force = 0.0;
       out.contact_force.setZero();
       out.dissipation = 0.0;
-      break;
+    }
+    out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.Ii_G;
   }
   out.friction_force = Eigen::Vector3d(out.contact_force.x(), out.contact_force.y(), 0.0);
   b.accelerations(out.contact_force, out.omega_dot, out.a_cm, out.a_m);
-  if (mode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0 (exact up to rounding)
+  if constexpr (kMode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
+}
+
+void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double& painleve) {
+  switch (mode) {
+    case ContactMode::slipping: motion<ContactMode::slipping>(model, y, out, painleve); break;
+    case ContactMode::rolling: motion<ContactMode::rolling>(model, y, out, painleve); break;
+    case ContactMode::flight: motion<ContactMode::flight>(model, y, out, painleve); break;
+  }
 }
 
 }  // namespace
@@ -99,10 +114,15 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
   }
 }
 
-void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt) {
+void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                ContactForceRecord* record) {
   Dynamics dyn;
   double painleve;
   evaluate_motion(model, mode, y, dyn, painleve);
+  if (record) {
+    record->force = dyn.contact_force;
+    record->painleve = painleve;
+  }
   const Eigen::Vector3d f_dot = angular_velocity(y).cross(figure_axis(y));  // keeps |f_hat| in the exact flow
   dydt[idx::x] = y[idx::u];
   dydt[idx::x + 1] = y[idx::u + 1];
@@ -132,11 +152,35 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
   if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
 }
 
-void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt) {
+bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
+                         double cos_max_tilt, ModeMargins& mg) {
+  mg = ModeMargins{};
+  if (mode != ContactMode::flight && model.top.com_offset != 0.0)
+    mg.tilt = figure_axis(y).normalized().z() - cos_max_tilt;
+  switch (mode) {
+    case ContactMode::slipping:
+      if (static_friction(model) > 0.0 && has_contact_modes(model)) return false;
+      mg.lift = r.force.z();
+      mg.painleve = r.painleve;
+      return true;
+    case ContactMode::rolling:
+      mg.lift = r.force.z();
+      mg.transfer = (static_friction(model) * r.force.z() - std::hypot(r.force.x(), r.force.y())) /
+                    (model.top.mass * model.plane.gravity);
+      return true;
+    case ContactMode::flight:
+      mg.lift = y[idx::gap];
+      return true;
+  }
+  return false;
+}
+
+void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record) {
   if (model.kind == ModelKind::adiabatic)
     adiabatic_derivative(model, y, dydt);
   else
-    derivative(model, mode, y, dydt);
+    derivative(model, mode, y, dydt, record);
 }
 
 }  // namespace top_sim

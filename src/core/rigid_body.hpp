@@ -24,7 +24,7 @@ struct RigidBody {
   Eigen::Vector3d Ii_G;                 // I'^-1 (omega x L_total - c nu f_hat)
   Eigen::Vector3d centripetal;          // omega x (omega x f_hat)
 
-  RigidBody(const Model& model, const StateVector& y) {
+  [[gnu::always_inline]] RigidBody(const Model& model, const StateVector& y) {
     const Top& top = model.top;
     m = top.mass;
     R = top.tip_radius;
@@ -61,10 +61,10 @@ struct RigidBody {
   // Material velocity of the top at the contact: v_c = u - R omega x n (3-vector).
   Eigen::Vector3d contact_velocity() const { return u - R * Eigen::Vector3d(w.y(), -w.x(), 0.0); }
 
-  // Accelerations under a contact force F at the contact point (F = 0 in flight).
-  void accelerations(const Eigen::Vector3d& F, Eigen::Vector3d& omega_dot, Eigen::Vector3d& a_cm,
+  // Translational accelerations under a contact force F at the contact point (F = 0 in flight), given
+  // omega_dot = I'^-1 (rho x F) - I'^-1 G.
+  void accelerations(const Eigen::Vector3d& F, const Eigen::Vector3d& omega_dot, Eigen::Vector3d& a_cm,
                      Eigen::Vector3d& a_m) const {
-    omega_dot = inverse_inertia(rho.cross(F)) - Ii_G;
     a_cm = g + F / m;
     a_m = a_cm - f * (omega_dot.cross(f_hat) + centripetal);
   }

@@ -74,7 +74,11 @@ std::string impact_painleve_message(double t, double denominator) {
 Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
   stepper_ = make_stepper(
       scene_.integrator,
-      [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt); },
+      [this](const StateVector& y, StateVector& dydt) {
+        model_derivative(model_, mode_, y, dydt, &record_);
+        record_y_ = y;
+        record_valid_ = true;
+      },
       [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
       [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); });
   reset();
@@ -123,6 +127,8 @@ void Simulator::reset() {
 void Simulator::restart_stepper(bool rebase_energy) {
   if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y_);
   if (rebase_energy) balance_.rebase(model_, y_);
+  cos_max_tilt_ = std::cos(model_.top.max_tilt);
+  record_valid_ = false;  // the mode or the model may have changed
   stepper_->reset(y_, t_);
   scanned_ = t_;
   last_margins_ = margins_of(model_, mode_, y_);
@@ -277,7 +283,7 @@ bool Simulator::scan_events(double t_end) {
     scanned_ = t_end;
     return true;
   }
-  const ModeMargins m1 = margins_of(model_, mode_, y1);
+  const ModeMargins m1 = step_end_margins(y1);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
     const double n = std::ceil((t_end - t0) / sample_spacing(model_, y1));
@@ -314,6 +320,14 @@ bool Simulator::scan_events(double t_end) {
   last_margins_ = m1;
   scanned_ = t_end;
   return true;
+}
+
+// The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
+// its recorded contact force serves unless the state differs in any bit (then one full evaluation).
+ModeMargins Simulator::step_end_margins(const StateVector& y) {
+  ModeMargins m;
+  if (record_valid_ && record_y_ == y && margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m)) return m;
+  return margins_of(model_, mode_, y);
 }
 
 void Simulator::handle_event(int event, const ModeMargins& m) {

@@ -297,12 +297,9 @@ TEST(Coulomb, FiveSecondsWithTheStiffMethodFinishWithTheEnergyBalanceHeld) {
   top_sim_test::note("Coulomb v_eps 1e-6, 5 s rosenbrock4: energy residual", r.result.max_energy_residual);
 }
 
-// KNOWN LIMITATION (disabled, documented in config/scenes/coulomb.yaml and docs/performance.md): at the default
-// v_eps = 1e-9 m/s the top sticks and slips at the friction limit during nutation, where the regularised friction
-// direction turns at rates ~ mu g / |v_t| ~ 1e9 1/s; the linearly implicit Rosenbrock steps collapse there
-// (0.1 s simulated took 2.5e6 steps). physics.md section 4 allows a documented larger v_eps (the shipped Coulomb
-// scene uses 1e-7: 3.4e3 steps for 5 s) or a stick model; the stick model is future work. Enable this test with it.
-TEST(Coulomb, DISABLED_DefaultRegularizationWithTheStiffMethodTakesBoundedSteps) {
+// Was DISABLED before the stick model (rosenbrock4 took 2.5e6 steps for 0.1 s at v_eps = 1e-9 while the top
+// stuck and slipped inside the regularised layer); with the rolling mode of physics.md section 9 it finishes.
+TEST(Coulomb, DefaultRegularizationWithTheStiffMethodTakesBoundedSteps) {
   Simulator sim(scene_from(aluminium_scene("{inclination: 0.1}", "{law: coulomb, mu: 0.3, regularization_speed: 1.0e-9}",
                                            "{tilt: 0.1, spin: 200.0}",
                                            "integrator: {method: rosenbrock4, rtol: 1.0e-6, atol: 1.0e-9}\n")));
