@@ -6,14 +6,14 @@
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/format.hpp"
 
 namespace top_sim {
 
 namespace {
 std::string bad(const char* field, double value, const char* range) {
   std::ostringstream os;
-  os.precision(17);
-  os << field << " = " << value << ": must be " << range;
+  os << field << " = " << format_number(value) << ": must be " << range;
   return os.str();
 }
 }  // namespace
@@ -53,17 +53,17 @@ std::string validate(const Command& c, const Model& model) {
       const double v = *c.static_friction;
       if (!std::isfinite(v) || v < mu0) {
         std::ostringstream range;
-        range << ">= mu(0) = " << mu0 << " of law " << to_string(next.friction.kind) << " and finite";
+        range << ">= mu(0) = " << format_number(mu0) << " of law " << to_string(next.friction.kind) << " and finite";
         return bad("static_friction", v, range.str().c_str());
       }
       if (v > 0.0 && !has_contact_modes(model))
         return bad("static_friction", v, "0 with model.normal_force static or model.kind adiabatic (no rolling)");
     } else if (next.contact.static_friction && *next.contact.static_friction < mu0) {
       std::ostringstream os;
-      os.precision(17);
-      os << "friction: law " << to_string(next.friction.kind) << " has mu(0) = " << mu0
-         << " above the static coefficient in force (friction.static = " << *next.contact.static_friction
-         << "); set static_friction >= " << mu0 << " in the same command";
+      os << "friction: law " << to_string(next.friction.kind) << " has mu(0) = " << format_number(mu0)
+         << " above the static coefficient in force (friction.static = "
+         << format_number(*next.contact.static_friction) << "); set static_friction >= " << format_number(mu0)
+         << " in the same command";
       return os.str();
     }
   }

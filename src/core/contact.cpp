@@ -1,5 +1,6 @@
 // Contact kinematics and faults (physics.md sections 3 and 4).
 #include "top_sim/contact.hpp"
+#include "top_sim/format.hpp"
 
 #include <cmath>
 #include <sstream>
@@ -18,9 +19,7 @@ const char* to_string(ContactFault fault) {
 
 std::string describe(ContactFault fault, double value, double t) {
   std::ostringstream os;
-  os.precision(17);
-  os << "t = " << t << " s: ";
-  os.precision(6);
+  os << "t = " << format_number(t) << " s: ";
   switch (fault) {
     case ContactFault::none: os << "no contact fault"; break;
     case ContactFault::painleve:

@@ -8,6 +8,7 @@
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
 #include "top_sim/orientation.hpp"
 
@@ -61,9 +62,7 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
 
 std::string impact_painleve_message(double t, double denominator) {
   std::ostringstream os;
-  os.precision(17);
-  os << "t = " << t << " s: ";
-  os.precision(6);
+  os << "t = " << format_number(t) << " s: ";
   os << "Painleve at impact: the sliding impulse has no admissible normal part (n . K (n - mu_i t_hat) = "
      << denominator << " <= 0); reduce the friction";
   return os.str();

@@ -283,7 +283,7 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
       {[&] { mon.inclination(-inf); }, {"inclination = -inf"}},
       {[&] { mon.spin(inf); }, {"spin = inf", "finite"}},
       {cmd([](top_sim::TopCommand& c) { c.set_rotor_coupling = true; c.rotor_coupling = -1e-9; }),
-       {"rotor_coupling = -1", "e-09", ">= 0"}},  // the core prints 17 digits: -1.0000000000000001e-09
+       {"rotor_coupling = -1e-09", ": must be", ">= 0"}},  // shortest round-trip text of the value
       {cmd([](top_sim::TopCommand& c) { c.set_friction = true; c.friction_law = "coulomb"; c.mu = -0.1; }),
        {"friction.mu = -0.1", ">= 0"}},
       {cmd([](top_sim::TopCommand& c) { c.set_friction = true; c.friction_law = "paper"; c.mu_c = 0.25; c.s_c = 1.5; }),
