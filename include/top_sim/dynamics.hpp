@@ -40,8 +40,8 @@ struct ContactForceRecord {
 void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                 ContactForceRecord* record = nullptr);
 
-// The margins of `mode` from a recorded contact force (no dynamics evaluation); equal to evaluate_dynamics()'s
-// except the stick function of a slipping contact with mu_s > 0, which needs the rolling force (returns false).
+// The margins of `mode` from a recorded contact force (no dynamics evaluation); evaluate_dynamics() uses it too.
+// Returns false for a slipping contact with mu_s > 0, whose stick function (left at kNone) needs the rolling force.
 bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
                          double cos_max_tilt, ModeMargins& out);
 

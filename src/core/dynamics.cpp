@@ -86,32 +86,15 @@ void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y,
 }  // namespace
 
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
-  double painleve;
-  evaluate_motion(model, mode, y, out, painleve);
-  ModeMargins& mg = out.margins;
-  mg = ModeMargins{};
-  const double weight = model.top.mass * model.plane.gravity;
-  const double mu_s = static_friction(model);
-  if (mode != ContactMode::flight && model.top.com_offset != 0.0)  // a ball's figure axis is only a marker
-    mg.tilt = figure_axis(y).normalized().z() - std::cos(model.top.max_tilt);
-  switch (mode) {
-    case ContactMode::slipping:
-      mg.lift = out.normal_force;
-      mg.painleve = painleve;
-      if (mu_s > 0.0 && has_contact_modes(model)) {
-        const Eigen::Vector3d F = rolling_force(contact_response(model, y));
-        const double consistency = (std::hypot(F.x(), F.y()) - mu_s * F.z()) / weight;
-        mg.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
-      }
-      break;
-    case ContactMode::rolling:
-      mg.lift = out.normal_force;
-      mg.transfer = (mu_s * out.normal_force - std::hypot(out.contact_force.x(), out.contact_force.y())) / weight;
-      break;
-    case ContactMode::flight:
-      mg.lift = y[idx::gap];
-      break;
-  }
+  ContactForceRecord record;
+  evaluate_motion(model, mode, y, out, record.painleve);
+  record.force = out.contact_force;
+  if (margins_from_record(model, mode, y, record, std::cos(model.top.max_tilt), out.margins)) return;
+  // A slipping contact that may stick: the stick function needs the rolling force at this state.
+  const Eigen::Vector3d F = rolling_force(contact_response(model, y));
+  const double consistency =
+      (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);
+  out.margins.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
 }
 
 void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
@@ -159,10 +142,9 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
     mg.tilt = figure_axis(y).normalized().z() - cos_max_tilt;
   switch (mode) {
     case ContactMode::slipping:
-      if (static_friction(model) > 0.0 && has_contact_modes(model)) return false;
       mg.lift = r.force.z();
       mg.painleve = r.painleve;
-      return true;
+      return !(static_friction(model) > 0.0 && has_contact_modes(model));  // else the stick function is missing
     case ContactMode::rolling:
       mg.lift = r.force.z();
       mg.transfer = (static_friction(model) * r.force.z() - std::hypot(r.force.x(), r.force.y())) /
