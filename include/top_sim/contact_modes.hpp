@@ -62,7 +62,7 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
 
 // Outcome of the closing rule (section 9): the mode to continue in, or a Painleve fault.
 struct ClosingResult {
-  ContactMode mode = ContactMode::slipping;
+  ContactMode mode = ContactMode::slipping;  // slipping also when painleve: its margins carry the fault
   bool painleve = false;
   bool stuck = false;  // the stick impulse was applied to the state
 };

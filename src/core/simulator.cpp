@@ -109,14 +109,10 @@ void Simulator::reset() {
   switch_count_ = 0;
   instant_switches_ = 0;
   last_switch_t_ = -1.0;
-  const ClosingResult c = initial_mode(model_, y_);  // a stick impulse here is part of the initial state
-  mode_ = c.mode;
+  // A stick impulse here is part of the initial state; a Painleve state comes back as slipping, and
+  // restart_stepper() reports it from the slipping margins.
+  mode_ = initial_mode(model_, y_).mode;
   mode_since_ = t_;
-  if (c.painleve) {
-    Dynamics dyn;
-    evaluate_dynamics(model_, ContactMode::slipping, y_, dyn);
-    fail(ContactFault::painleve, describe(ContactFault::painleve, dyn.margins.painleve, t_));
-  }
   restart_stepper(true);
   update_regime();
 }
@@ -183,8 +179,7 @@ void Simulator::reclose_contact() {
   const ClosingResult c = close_contact(model_, y_);
   const double loss = e0 - mechanical_energy(model_, y_);  // the stick impulse's loss, if any
   y_[idx::w_diss] += loss;
-  if (c.painleve) return;  // restart_stepper() reports it from the margins
-  if (c.mode != before) {
+  if (c.mode != before) {  // a Painleve state comes back as slipping: restart_stepper() reports it
     const ModeSwitchKind kind = c.mode == ContactMode::flight  ? ModeSwitchKind::lift_off
                                 : c.mode == ContactMode::rolling ? ModeSwitchKind::stick
                                                                  : ModeSwitchKind::slip;
@@ -363,16 +358,7 @@ void Simulator::handle_event(int event, const ModeMargins& m) {
           return;
         }
         ContactMode next = ContactMode::flight;  // a bounce flies again
-        if (impact.plastic) {
-          const ClosingResult c = close_contact(model_, y_);
-          if (c.painleve) {
-            y_[idx::w_diss] += e0 - mechanical_energy(model_, y_);
-            switch_mode(ContactMode::slipping, ModeSwitchKind::touchdown);
-            restart_stepper(false);  // reports the fault from the margins
-            return;
-          }
-          next = c.mode;
-        }
+        if (impact.plastic) next = close_contact(model_, y_).mode;  // Painleve: slipping, reported by the restart
         const double loss = e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
         y_[idx::w_diss] += loss;
         switch_mode(next, ModeSwitchKind::touchdown, -loss);
