@@ -1,11 +1,12 @@
-# The physics core library and the ROS-free command-line tools.
-file(GLOB TOP_SIM_CORE_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/src/core/*.cpp)
-add_library(top_sim_core ${TOP_SIM_CORE_SOURCES})
+# The physics core library (no ROS, no LCM), the shared CLI code and top_sim_run.
+file(GLOB TOP_SIM_CORE_SOURCES CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/src/core/*.cpp)
+add_library(top_sim_core SHARED ${TOP_SIM_CORE_SOURCES})
+add_library(top_sim::top_sim_core ALIAS top_sim_core)
 target_include_directories(top_sim_core PUBLIC
-  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> ${EIGEN3_INCLUDE_DIR} ${Boost_INCLUDE_DIRS})
-target_link_libraries(top_sim_core PUBLIC yaml-cpp)
-target_compile_definitions(top_sim_core PRIVATE
-  TOP_SIM_SOURCE_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
+  $<BUILD_INTERFACE:${CMAKE_CURRENT_SOURCE_DIR}/include> $<INSTALL_INTERFACE:${TOP_SIM_INSTALL_INCLUDE}>)
+target_link_libraries(top_sim_core PUBLIC Eigen3::Eigen Boost::headers yaml-cpp PRIVATE ${CMAKE_DL_LIBS})
+# Relative path from the directories holding binaries to the data (data_path.cpp searches upwards for it).
+target_compile_definitions(top_sim_core PRIVATE TOP_SIM_DATA_SUBDIR="share/${PROJECT_NAME}/config")
 set_target_properties(top_sim_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 add_library(top_sim_cli_common src/cli/run_output.cpp)
@@ -18,4 +19,3 @@ include(${CMAKE_CURRENT_LIST_DIR}/lcm.cmake)
 if(TARGET top_sim_lcm)
   target_link_libraries(top_sim_run top_sim_lcm)
 endif()
-

@@ -1,14 +1,22 @@
-# GoogleTest for the core (one executable, every test/core/*.cpp) and Google Benchmark targets.
-if(CATKIN_ENABLE_TESTING)
-  file(GLOB TOP_SIM_CORE_TESTS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
-  catkin_add_gtest(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
-  if(TARGET top_sim_core_tests)
-    target_link_libraries(top_sim_core_tests top_sim_cli_common gtest_main)  # catkin links gtest only
-    target_compile_definitions(top_sim_core_tests PRIVATE
-      TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
-      TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>")
-    add_dependencies(top_sim_core_tests top_sim_run)
-  endif()
+# Tests of the core (plain build: GoogleTest, pytest, the install/export check) and Google Benchmark targets.
+# The catkin build (TOP_SIM_ROS) runs the ROS tests only (cmake/ros.cmake); scripts/test.sh runs both builds.
+if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
+  find_package(GTest REQUIRED)
+  # JUnit XML of every suite goes here (scripts/test.sh counts the cases).
+  set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
+  file(GLOB TOP_SIM_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
+  add_executable(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
+  target_link_libraries(top_sim_core_tests top_sim_cli_common GTest::gtest GTest::gtest_main)
+  target_compile_definitions(top_sim_core_tests PRIVATE
+    TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
+    TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>")
+  add_dependencies(top_sim_core_tests top_sim_run)
+  add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
+
+  # Another CMake project links the installed core through find_package(top_sim_core).
+  add_test(NAME install_and_find_package COMMAND ${CMAKE_COMMAND}
+    -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}
+    -DRESULTS=${TOP_SIM_TEST_RESULTS} -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)
 endif()
 
 find_package(benchmark QUIET)

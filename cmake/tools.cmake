@@ -6,6 +6,3 @@ target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sw
 
 add_executable(top_sim_sweep src/cli/top_sim_sweep.cpp)
 target_link_libraries(top_sim_sweep top_sim_cli_common Threads::Threads)
-
-# Included before catkin_package(), so catkin's destination variable is not set yet: use its value.
-install(TARGETS top_sim_sweep RUNTIME DESTINATION lib/${PROJECT_NAME})

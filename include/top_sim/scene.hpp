@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "top_sim/command.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"
@@ -61,8 +62,5 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
 
 // The initial state the scene asks for (tilted start or exact sleeping state).
 StateVector initial_state(const Scene& scene);
-
-// Directory holding tops/, planes/, scenes/: $TOP_SIM_CONFIG_DIR, else the source tree's config/.
-std::string default_config_dir();
 
 }  // namespace top_sim

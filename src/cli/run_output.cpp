@@ -4,6 +4,9 @@
 #include <ctime>
 #include <iomanip>
 #include <sstream>
+#include <utility>
+
+#include "top_sim/trajectory.hpp"
 
 namespace top_sim {
 
@@ -102,18 +105,19 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
 }
 
 void write_csv_header(std::ostream& os) {
-  os << "t,alpha,com_x,com_y,com_z,vcm_x,vcm_y,vcm_z,u_x,u_y,contact_x,contact_y,f_x,f_y,f_z,"
-        "omega_x,omega_y,omega_z,spin,rotor_spin,s,mu,N,phi,regime,contact_mode,gap,energy,energy_residual\n";
+  const char* sep = "";
+  for (const TrajectoryColumn& c : trajectory_columns()) os << std::exchange(sep, ",") << c.name;
+  os << '\n';
 }
 
 void write_csv_row(std::ostream& os, const Snapshot& s) {
-  os << std::setprecision(12) << s.t << ',' << s.alpha << ',' << s.com.x() << ',' << s.com.y() << ',' << s.com.z()
-     << ',' << s.com_velocity.x() << ',' << s.com_velocity.y() << ',' << s.com_velocity.z() << ','
-     << s.tip_velocity.x() << ',' << s.tip_velocity.y() << ',' << s.contact_point.x() << ',' << s.contact_point.y()
-     << ',' << s.figure_axis.x() << ',' << s.figure_axis.y() << ',' << s.figure_axis.z() << ','
-     << s.angular_velocity.x() << ',' << s.angular_velocity.y() << ',' << s.angular_velocity.z() << ',' << s.spin
-     << ',' << s.rotor_spin << ',' << s.slip << ',' << s.mu << ',' << s.normal_force << ',' << s.phi << ','
-     << to_string(s.regime) << ',' << to_string(s.contact_mode) << ',' << s.gap << ',' << s.energy << ',' << s.energy_balance_residual << '\n';
+  os << std::setprecision(12);
+  const char* sep = "";
+  for (const TrajectoryColumn& c : trajectory_columns()) {
+    os << std::exchange(sep, ",");
+    if (c.text) os << c.text(s); else os << c.value(s);
+  }
+  os << '\n';
 }
 
 std::string summary_json(const Scene& scene, const RunResult& r) {

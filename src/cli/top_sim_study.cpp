@@ -318,7 +318,7 @@ void model_choice(const Options& opt) {
 const char* kUsage =
     "usage: top_sim_study [--config DIR] [--out DIR] [--quick] STUDY...\n"
     "  STUDY: work-precision | stability | default-choice | mujoco | model-choice | all\n"
-    "  --config DIR  tops/, planes/, scenes/ (default: $TOP_SIM_CONFIG_DIR or the source tree's config)\n"
+    "  --config DIR  tops/, planes/, scenes/ (default: $TOP_SIM_CONFIG_DIR or the installed share/top_sim/config)\n"
     "  --out DIR     where perf_*.csv go (default: .)\n"
     "  --quick       shorter runs and fewer points (a smoke run, not for the report)\n";
 

@@ -14,10 +14,6 @@
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/stationary.hpp"
 
-#ifndef TOP_SIM_SOURCE_CONFIG_DIR
-#define TOP_SIM_SOURCE_CONFIG_DIR ""
-#endif
-
 namespace top_sim {
 
 SceneError::SceneError(const std::string& f, const std::string& k, const std::string& problem)
@@ -135,6 +131,9 @@ YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std
   if (!n || !n.IsScalar()) return n;
   const std::string name = n.Scalar();
   const std::string dir = config_dir.empty() ? default_config_dir() : config_dir;
+  if (dir.empty())
+    throw SceneError(file, key, "'" + name + "' names a file in " + folder +
+                                    "/ but no data directory was found (set TOP_SIM_CONFIG_DIR or give a mapping)");
   const std::string path = dir + "/" + folder + "/" + name + ".yaml";
   try {
     source = path;
@@ -232,11 +231,6 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
                                ">= mu(0) = " + fmt(mu0) + " of law " + kind + " (the static coefficient mu_s)");
   }
   return law;
-}
-
-std::string default_config_dir() {
-  if (const char* env = std::getenv("TOP_SIM_CONFIG_DIR")) return env;
-  return TOP_SIM_SOURCE_CONFIG_DIR;
 }
 
 Scene parse_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir) {

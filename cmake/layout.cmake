@@ -1,0 +1,30 @@
+# Output and install directories. The build tree mirrors the install tree (bin/ or lib/top_sim/ next to
+# share/top_sim/config), so the core finds its data relative to its own binary in both (data_path.cpp).
+if(TOP_SIM_ROS)
+  find_package(catkin REQUIRED)
+  # catkin_package() (called in ros.cmake, after message generation) would set these; the core targets are
+  # declared before it, so set them here: executables in devel/lib/top_sim (rosrun finds them).
+  set(TOP_SIM_OUTPUT_PREFIX ${CATKIN_DEVEL_PREFIX})
+  set(TOP_SIM_INSTALL_BIN lib/${PROJECT_NAME})
+  set(TOP_SIM_INSTALL_LIB lib)
+  set(TOP_SIM_INSTALL_INCLUDE include)
+  set(TOP_SIM_INSTALL_SHARE share/${PROJECT_NAME})
+else()
+  include(GNUInstallDirs)
+  set(TOP_SIM_OUTPUT_PREFIX ${PROJECT_BINARY_DIR})
+  set(TOP_SIM_INSTALL_BIN ${CMAKE_INSTALL_BINDIR})
+  set(TOP_SIM_INSTALL_LIB ${CMAKE_INSTALL_LIBDIR})
+  set(TOP_SIM_INSTALL_INCLUDE ${CMAKE_INSTALL_INCLUDEDIR})
+  set(TOP_SIM_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME})
+  enable_testing()
+endif()
+set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
+set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
+set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/${TOP_SIM_INSTALL_BIN})
+
+# The data directory of the build tree: a link to the sources' config/ where the installed one will be.
+set(TOP_SIM_BUILD_SHARE ${TOP_SIM_OUTPUT_PREFIX}/share/${PROJECT_NAME})
+file(MAKE_DIRECTORY ${TOP_SIM_BUILD_SHARE})
+if(NOT EXISTS ${TOP_SIM_BUILD_SHARE}/config)
+  file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/config ${TOP_SIM_BUILD_SHARE}/config SYMBOLIC)
+endif()

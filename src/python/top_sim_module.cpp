@@ -1,0 +1,348 @@
+// The Python module `top_sim`: a thin adapter over the core (scenes, Simulator, stationary state, trajectories).
+// Simulation runs with the GIL released; each Simulator is owned by one thread at a time (a second thread gets
+// RuntimeError instead of a data race), so many simulators run in parallel threads.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <sys/stat.h>
+
+#include "top_sim/data_path.hpp"
+#include "top_sim/format.hpp"
+#include "top_sim/scene.hpp"
+#include "top_sim/simulator.hpp"
+#include "top_sim/stationary.hpp"
+#include "top_sim/trajectory.hpp"
+
+namespace py = pybind11;
+using namespace top_sim;
+
+namespace {
+
+// ---- scenes -----------------------------------------------------------------------------------------------
+
+// A Python value as YAML (the scene parser then checks every key exactly as for a file).
+YAML::Node to_yaml(const py::handle& value) {
+  if (py::isinstance<py::dict>(value)) {
+    YAML::Node map(YAML::NodeType::Map);
+    for (const auto& item : py::reinterpret_borrow<py::dict>(value)) map[py::str(item.first).cast<std::string>()] = to_yaml(item.second);
+    return map;
+  }
+  if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+    YAML::Node seq(YAML::NodeType::Sequence);
+    for (const auto& item : value) seq.push_back(to_yaml(item));
+    return seq;
+  }
+  if (value.is_none()) return YAML::Node(YAML::NodeType::Null);
+  if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
+    std::ostringstream os;
+    os.precision(17);
+    os << value.cast<double>();  // 17 digits: the number reads back exactly
+    return YAML::Node(os.str());
+  }
+  return YAML::Node(py::str(value).cast<std::string>());
+}
+
+bool is_file(const std::string& path) {
+  struct stat st {};
+  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+// A path, a scene name of the data directory ("default" -> <config>/scenes/default.yaml), or a dict.
+Scene scene_from(const py::object& source) {
+  if (py::isinstance<Scene>(source)) return source.cast<Scene>();
+  if (py::isinstance<py::dict>(source)) return parse_scene(to_yaml(source), "<dict>", default_config_dir());
+  const std::string text = py::str(source).cast<std::string>();  // also pathlib.Path
+  if (!is_file(text) && text.find('/') == std::string::npos && text.find(".yaml") == std::string::npos) {
+    const std::string named = default_config_dir() + "/scenes/" + text + ".yaml";
+    if (is_file(named)) return load_scene(named);
+  }
+  return load_scene(text);
+}
+
+// ---- values -----------------------------------------------------------------------------------------------
+
+py::array_t<double> array(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  py::array_t<double> a(v.size());
+  for (Eigen::Index i = 0; i < v.size(); ++i) a.mutable_at(i) = v[i];
+  return a;
+}
+
+py::array_t<double> array(const StateVector& y) {
+  py::array_t<double> a(static_cast<py::ssize_t>(y.size()));
+  for (std::size_t i = 0; i < y.size(); ++i) a.mutable_at(i) = y[i];
+  return a;
+}
+
+py::object optional_fault(ContactFault f) { return f == ContactFault::none ? py::object(py::none()) : py::str(to_string(f)); }
+
+// Every field of the Snapshot (docs/interfaces.md), vectors as NumPy arrays in the plane frame.
+py::dict snapshot_dict(const Snapshot& s) {
+  py::dict d;
+  d["t"] = s.t;
+  d["alpha"] = s.alpha;
+  d["tip_center"] = array(s.tip_center);
+  d["com"] = array(s.com);
+  d["orientation"] = array(Eigen::Vector4d(s.orientation.x(), s.orientation.y(), s.orientation.z(), s.orientation.w()));
+  d["com_velocity"] = array(s.com_velocity);
+  d["tip_velocity"] = array(s.tip_velocity);
+  d["contact_point"] = array(s.contact_point);
+  d["figure_axis"] = array(s.figure_axis);
+  d["angular_velocity"] = array(s.angular_velocity);
+  d["spin"] = s.spin;
+  d["has_rotor"] = s.has_rotor;
+  d["rotor_spin"] = s.rotor_spin;
+  d["spin_phase"] = s.spin_phase;
+  d["slip"] = s.slip;
+  d["mu"] = s.mu;
+  d["normal_force"] = s.normal_force;
+  d["friction_force"] = array(s.friction_force);
+  d["com_acceleration"] = array(s.com_acceleration);
+  d["phi"] = s.phi;
+  d["has_stationary_state"] = s.has_stationary_state;
+  d["phi_star"] = s.has_stationary_state ? py::object(py::float_(s.phi_star)) : py::object(py::none());
+  d["regime"] = to_string(s.regime);
+  d["contact_mode"] = to_string(s.contact_mode);
+  d["gap"] = s.gap;
+  d["energy"] = s.energy;
+  d["dissipated_work"] = s.dissipated_work;
+  d["energy_residual"] = s.energy_balance_residual;
+  d["fault"] = optional_fault(s.fault);
+  d["fault_message"] = s.fault_message;
+  return d;
+}
+
+py::dict stationary_dict(const StationaryState& st) {
+  py::dict d;
+  d["exists"] = st.exists;
+  d["reason"] = st.reason;
+  d["phi_defined"] = st.phi_defined;
+  d["slip"] = st.slip;
+  d["slip_unstable"] = st.slip_unstable >= 0.0 ? py::object(py::float_(st.slip_unstable)) : py::object(py::none());
+  d["phi"] = st.phi;
+  d["rolling_speed"] = st.rolling_speed;
+  d["sliding_speed"] = st.sliding_speed;
+  d["figure_axis"] = array(st.f_hat);
+  d["angular_velocity"] = array(st.omega);
+  d["velocity"] = array(st.velocity);
+  return d;
+}
+
+// ---- commands ---------------------------------------------------------------------------------------------
+
+double number(const py::handle& v, const std::string& key) {
+  if (!py::isinstance<py::float_>(v) && !py::isinstance<py::int_>(v))
+    throw py::value_error(key + " = " + py::repr(v).cast<std::string>() + ": must be a number");
+  return v.cast<double>();
+}
+
+// The keys of top_sim.Command (command.hpp); the core validates the values.
+Command command_from(const py::dict& d) {
+  Command c;
+  for (const auto& item : d) {
+    const std::string key = py::str(item.first).cast<std::string>();
+    const double v = number(item.second, key);
+    if (key == "inclination") c.inclination = v;
+    else if (key == "spin") c.spin = v;
+    else if (key == "rotor_spin") c.rotor_spin = v;
+    else if (key == "rotor_coupling") c.rotor_coupling = v;
+    else if (key == "static_friction") c.static_friction = v;
+    else if (key == "restitution") c.restitution = v;
+    else
+      throw py::key_error("unknown command key '" + key +
+                          "' (allowed: inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution)");
+  }
+  return c;
+}
+
+// ---- the simulator ----------------------------------------------------------------------------------------
+
+class PySimulator {
+ public:
+  explicit PySimulator(const Scene& scene) : sim_(std::make_unique<Simulator>(scene)) {}
+
+  // Exclusive use of the simulator by the calling thread; another thread's call raises instead of racing.
+  std::unique_lock<std::mutex> own() {
+    std::unique_lock<std::mutex> lock(busy_, std::try_to_lock);
+    if (!lock.owns_lock()) throw std::runtime_error("this Simulator is in use by another thread (one thread owns it)");
+    return lock;
+  }
+
+  py::dict step_to(double t) {
+    auto lock = own();
+    if (!std::isfinite(t) || t < sim_->time())
+      throw py::value_error("t = " + format_number(t) + ": must be finite and >= the current time " +
+                            format_number(sim_->time()) + " [s]");
+    {
+      py::gil_scoped_release release;
+      sim_->advance_to(t);
+    }
+    return snapshot_dict(sim_->snapshot());
+  }
+
+  py::dict run(double duration) {
+    check_duration(duration);
+    double t_end;
+    {
+      auto lock = own();
+      t_end = sim_->time() + duration;
+    }
+    return step_to(t_end);
+  }
+
+  // Samples every 1/rate from now to now + duration (both included); stops early at a contact fault.
+  py::dict trajectory(double duration, double rate) {
+    check_duration(duration);
+    if (!std::isfinite(rate) || rate <= 0.0)
+      throw py::value_error("rate = " + format_number(rate) + ": must be finite and > 0 [1/s]");
+    const auto& columns = trajectory_columns();
+    std::vector<double> values;
+    auto lock = own();
+    {
+      py::gil_scoped_release release;
+      sample(duration, rate, values);
+    }
+    const std::size_t n = values.size() / columns.size();
+    py::dict out;
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      py::array_t<double> a(n);
+      for (std::size_t k = 0; k < n; ++k) a.mutable_at(k) = values[k * columns.size() + c];
+      out[columns[c].name] = a;
+    }
+    return out;
+  }
+
+  void apply(const py::dict& d) {
+    const std::string error = sim_->submit(command_from(d));
+    if (!error.empty()) throw py::value_error(error);
+  }
+
+  py::dict snapshot() {
+    auto lock = own();
+    return snapshot_dict(sim_->snapshot());
+  }
+
+  void reset() {
+    auto lock = own();
+    sim_->reset();
+  }
+
+  // Reads the simulator under ownership (another thread may be advancing it with the GIL released).
+  template <class F>
+  auto read(F f) {
+    auto lock = own();
+    return f(*sim_);
+  }
+
+ private:
+  static void check_duration(double duration) {
+    if (!std::isfinite(duration) || duration < 0.0)
+      throw py::value_error("duration = " + format_number(duration) + ": must be finite and >= 0 [s]");
+  }
+
+  void sample(double duration, double rate, std::vector<double>& values) {
+    const auto& columns = trajectory_columns();
+    const double t0 = sim_->time();
+    const long n = static_cast<long>(std::floor(duration * rate * (1.0 + 1e-12)));
+    values.reserve(static_cast<std::size_t>(n + 1) * columns.size());
+    for (long k = 0; k <= n; ++k) {
+      if (k > 0) sim_->advance_to(t0 + static_cast<double>(k) / rate);
+      const Snapshot s = sim_->snapshot();
+      for (const TrajectoryColumn& c : columns) values.push_back(c.value(s));
+      if (sim_->fault() != ContactFault::none) break;
+    }
+  }
+
+  std::unique_ptr<Simulator> sim_;
+  std::mutex busy_;
+};
+
+py::dict mode_seconds(PySimulator& p) {
+  const auto seconds = p.read([](Simulator& s) { return s.mode_seconds(); });
+  py::dict d;
+  for (int m = 0; m < kContactModeCount; ++m) d[to_string(static_cast<ContactMode>(m))] = seconds[m];
+  return d;
+}
+
+py::dict stats(PySimulator& p) {
+  const StepperStats s = p.read([](Simulator& sim) { return sim.stats(); });
+  py::dict d;
+  d["steps"] = s.steps;
+  d["rejected"] = s.rejected;
+  d["rhs_evaluations"] = s.rhs_evaluations;
+  d["layer_steps"] = p.read([](Simulator& sim) { return sim.layer_steps(); });
+  return d;
+}
+
+}  // namespace
+
+PYBIND11_MODULE(top_sim, m) {
+  m.doc() = "top_sim: a spinning top with a spherical tip on an inclined plane (the physics core of top_sim)";
+  py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
+
+  py::class_<Scene>(m, "Scene", "A validated scene (load it with top_sim.load_scene)")
+      .def_readonly("source", &Scene::source)
+      .def_readonly("duration", &Scene::duration)
+      .def_readonly("warnings", &Scene::warnings)
+      .def_property_readonly("method", [](const Scene& s) { return to_string(s.integrator.method); })
+      .def_property_readonly("inclination", [](const Scene& s) { return s.model.plane.inclination; })
+      .def_property_readonly("spin", [](const Scene& s) { return s.initial.spin; })
+      .def("__repr__", [](const Scene& s) { return "<top_sim.Scene " + s.source + ">"; });
+
+  m.def("load_scene", &scene_from, py::arg("source"),
+        "A scene from a YAML file path, a scene name of the installed data ('default'), or a dict with the keys "
+        "of a scene file; raises top_sim.SceneError naming the file, key, value and allowed range.");
+  m.def("config_dir", &default_config_dir, "The data directory (tops/, planes/, scenes/) the module uses.");
+  m.def("stationary_state",
+        [](const py::object& source, py::object spin) {
+          const Scene scene = scene_from(source);
+          return stationary_dict(stationary_state(scene.model, spin.is_none() ? scene.initial.spin : spin.cast<double>()));
+        },
+        py::arg("scene"), py::arg("spin") = py::none(),
+        "The analytic sleeping state (physics.md section 5) of a scene at its initial spin or at `spin` [rad/s].");
+
+  std::vector<std::string> names, units;
+  for (const TrajectoryColumn& c : trajectory_columns()) {
+    names.push_back(c.name);
+    units.push_back(c.unit);
+  }
+  m.attr("COLUMNS") = names;
+  m.attr("UNITS") = py::cast(units);
+  std::vector<std::string> regimes, modes;
+  for (int r = 0; r <= static_cast<int>(Regime::contact_fault); ++r) regimes.push_back(to_string(static_cast<Regime>(r)));
+  for (int c = 0; c < kContactModeCount; ++c) modes.push_back(to_string(static_cast<ContactMode>(c)));
+  m.attr("REGIMES") = regimes;        // trajectory()['regime'] codes index this list
+  m.attr("CONTACT_MODES") = modes;    // trajectory()['contact_mode'] codes index this list
+
+  py::class_<PySimulator>(m, "Simulator",
+                          "One top. Owned by one thread at a time; simulation releases the GIL.")
+      .def(py::init([](const py::object& source) { return std::make_unique<PySimulator>(scene_from(source)); }),
+           py::arg("scene"))
+      .def("run", &PySimulator::run, py::arg("duration"), "Advances by `duration` [s]; returns the snapshot.")
+      .def("step_to", &PySimulator::step_to, py::arg("t"), "Advances to simulated time t [s]; returns the snapshot.")
+      .def("trajectory", &PySimulator::trajectory, py::arg("duration"), py::arg("rate"),
+           "Samples every 1/rate [s] over `duration` (the current instant first): a dict of NumPy arrays, one per "
+           "CSV column (top_sim.COLUMNS); regime and contact_mode as codes into REGIMES and CONTACT_MODES.")
+      .def("apply", &PySimulator::apply, py::arg("command"),
+           "Queues a command dict (inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution); "
+           "it takes effect at the next step boundary. Raises ValueError naming the field, value and range.")
+      .def("snapshot", &PySimulator::snapshot, "Every derived quantity of the current instant, as a dict.")
+      .def("reset", &PySimulator::reset, "Back to the scene's initial state; time keeps running forward.")
+      .def_property_readonly("time", [](PySimulator& p) { return p.read([](Simulator& s) { return s.time(); }); })
+      .def_property_readonly("state", [](PySimulator& p) { const StateVector y = p.read([](Simulator& s) { return s.state(); }); return array(y); })
+      .def_property_readonly("contact_mode", [](PySimulator& p) { return to_string(p.read([](Simulator& s) { return s.contact_mode(); })); })
+      .def_property_readonly("fault", [](PySimulator& p) { return optional_fault(p.read([](Simulator& s) { return s.fault(); })); })
+      .def_property_readonly("fault_message", [](PySimulator& p) { return p.read([](Simulator& s) { return s.fault_message(); }); })
+      .def_property_readonly("mode_switch_count", [](PySimulator& p) { return p.read([](Simulator& s) { return s.mode_switch_count(); }); })
+      .def_property_readonly("mode_seconds", &mode_seconds)
+      .def_property_readonly("stats", &stats)
+      .def_property_readonly("max_energy_residual", [](PySimulator& p) { return p.read([](Simulator& s) { return s.max_energy_residual(); }); })
+      .def("stationary_state", [](PySimulator& p) { return stationary_dict(p.read([](Simulator& s) { return s.stationary(); })); },
+           "The analytic sleeping state for the current inclination and spin.");
+}
