@@ -90,6 +90,20 @@ BENCHMARK_CAPTURE(whole_run, dopri5_asleep_300s, Method::dopri5, 300.0, true)->U
 BENCHMARK_CAPTURE(whole_run, rosenbrock4_asleep_300s, Method::rosenbrock4, 300.0, true)->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(whole_run, switching_asleep_300s, Method::switching, 300.0, true)->Unit(benchmark::kMillisecond);
 
+// The C++ side of bench/python_bench.py: one short advance (0.1 ms, about one step) plus a snapshot, and a
+// snapshot alone, on a top that has run 10 s (what Python's sim.run(1e-4) and sim.snapshot() wrap).
+void short_advance_and_snapshot(benchmark::State& bs, bool advance) {
+  Simulator sim(default_scene());
+  sim.advance_to(10.0);
+  double t = sim.time();
+  for (auto _ : bs) {
+    if (advance) sim.advance_to(t += 1e-4);
+    benchmark::DoNotOptimize(sim.snapshot());
+  }
+}
+BENCHMARK_CAPTURE(short_advance_and_snapshot, advance_1e-4_and_snapshot, true)->Unit(benchmark::kMicrosecond);
+BENCHMARK_CAPTURE(short_advance_and_snapshot, snapshot_only, false)->Unit(benchmark::kMicrosecond);
+
 // The per-step bookkeeping the switching method charges rosenbrock4 (kStiffOverhead): one step's CPU on a
 // sleeping state, to compare with rhs/full_constrained times its right-hand sides per step.
 void rosenbrock_step_asleep(benchmark::State& bs) {

@@ -5,6 +5,8 @@
 TOP_SIM_REPO=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd -P)
 export TOP_SIM_WS=${TOP_SIM_WS:-$TOP_SIM_REPO/.catkin_ws}
 export TOP_SIM_JOBS=${TOP_SIM_JOBS:-2}
+# The plain CMake build of the core, tools and Python module (no ROS).
+export TOP_SIM_BUILD=${TOP_SIM_BUILD:-$TOP_SIM_REPO/build}
 # /usr/bin first: a pyenv python3 earlier on PATH has no ROS modules.
 export PATH=/usr/bin:$PATH
 export ROS_HOSTNAME=${ROS_HOSTNAME:-localhost}
@@ -17,6 +19,7 @@ TOP_SIM_PACKAGES=(
   libgtest-dev google-mock libbenchmark-dev python3-geometry-msgs python3-tf2-msgs python3-visualization-msgs
   python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
+  pybind11-dev python3-dev python3-numpy python3-pytest
 )
 
 # Every catkin_make call gets the same CMake arguments: catkin_make re-runs cmake whenever they change.
@@ -47,4 +50,11 @@ top_sim_missing_packages() {
 # catkin_make in the workspace with the project's CMake arguments; extra arguments (targets, -jN) follow.
 top_sim_catkin_make() {
   (cd "$TOP_SIM_WS" && catkin_make "${TOP_SIM_CMAKE_ARGS[@]}" "$@")
+}
+
+# The core on its own: configures (plain CMake, TOP_SIM_ROS=OFF) and builds everything in $TOP_SIM_BUILD.
+top_sim_plain_build() {
+  top_sim_log "plain CMake build of the core in $TOP_SIM_BUILD (-j$TOP_SIM_JOBS)"
+  cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD" -DTOP_SIM_ROS=OFF "${TOP_SIM_CMAKE_ARGS[@]}" >/dev/null &&
+    cmake --build "$TOP_SIM_BUILD" -j"$TOP_SIM_JOBS"
 }

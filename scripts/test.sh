@@ -1,26 +1,47 @@
 #!/usr/bin/env bash
-# Runs the whole test suite (gtest and rostest, via catkin's run_tests), installing and building first if needed.
+# Runs the whole test suite, installing and building first if needed:
+#   1. the plain CMake build of the core (-DTOP_SIM_ROS=OFF, in $TOP_SIM_BUILD): GoogleTest, pytest of the Python
+#      module and the install/find_package check, through ctest;
+#   2. the catkin package (node, messages): its gtests and rostests, through catkin's run_tests.
 # Prints every test case, a summary, and as the last line `N passed, N failed`.
-# Exit 0 only if the build succeeded, at least one test ran, and no test failed or errored.
+# Exit 0 only if the builds succeeded, at least one test ran, and no test failed or errored.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
 status=0   # becomes 1 on any failure; the counts line is printed in every case
-if ! bash "$TOP_SIM_REPO/scripts/install_deps.sh"; then
-  top_sim_log "INSTALLING THE DEBIAN PACKAGES FAILED"; status=1
-elif ! TOP_SIM_SKIP_DEPS=1 bash "$TOP_SIM_REPO/scripts/build.sh"; then
-  top_sim_log "BUILD FAILED"; status=1
-fi
+timeout_s=${TOP_SIM_TEST_TIMEOUT:-3000}
+plain_results=$TOP_SIM_BUILD/test_results
 mkdir -p "$TOP_SIM_WS"
 TOP_SIM_WS=$(cd "$TOP_SIM_WS" && pwd -P)
+results=$TOP_SIM_WS/build/test_results
+rm -rf "$results" "$plain_results"   # only this run's results are counted
+
+if ! bash "$TOP_SIM_REPO/scripts/install_deps.sh"; then
+  top_sim_log "INSTALLING THE DEBIAN PACKAGES FAILED"; status=1
+fi
+
+# ---- 1. the core on its own: plain CMake and ctest ------------------------------------------------------------
+if [ "$status" -eq 0 ]; then
+  if ! top_sim_plain_build; then
+    top_sim_log "PLAIN CMAKE BUILD FAILED"; status=1
+  else
+    top_sim_log "running the core's tests (ctest in $TOP_SIM_BUILD)"
+    # ctest's verdict is read from the JUnit XML below; a non-zero exit here is a failing test, already counted.
+    timeout --kill-after=30 "$timeout_s" ctest --test-dir "$TOP_SIM_BUILD" --output-on-failure \
+      --output-junit "$plain_results/ctest.xml" \
+      || top_sim_log "ctest reported failures (listed below)"
+  fi
+fi
+
+# ---- 2. the ROS package: catkin_make and run_tests ------------------------------------------------------------
+if [ "$status" -eq 0 ] && ! TOP_SIM_SKIP_DEPS=1 bash "$TOP_SIM_REPO/scripts/build.sh"; then
+  top_sim_log "BUILD FAILED"; status=1
+fi
 
 # LCM's default UDP multicast URL needs a multicast route; a sandbox without one gets it on loopback.
 if [ "$(id -u)" -eq 0 ] && command -v ip >/dev/null 2>&1 && [ -z "$(ip route show 224.0.0.0/4 2>/dev/null)" ]; then
   ip route add 224.0.0.0/4 dev lo 2>/dev/null && top_sim_log "added multicast route 224.0.0.0/4 dev lo" || true
 fi
-
-results=$TOP_SIM_WS/build/test_results
-rm -rf "$results"   # only this run's results are counted
 
 if [ "$status" -eq 0 ]; then
   top_sim_log "building the tests"
@@ -33,30 +54,31 @@ if [ "$status" -eq 0 ]; then
   # One test at a time (-j1): tests share 2 cores, ROS masters and LCM channels. The timeout stops a hung test.
   top_sim_log "running the tests"
   set +e
-  timeout --kill-after=30 "${TOP_SIM_TEST_TIMEOUT:-3000}" bash -c \
+  timeout --kill-after=30 "$timeout_s" bash -c \
     'source "$1/scripts/lib.sh" && top_sim_catkin_make -j1 run_tests' _ "$TOP_SIM_REPO"
   rc=$?
   set -e
   # run_tests exits 0 even when tests fail (the verdict comes from the XML below); non-zero means it broke.
   if [ "$rc" -eq 124 ] || [ "$rc" -eq 137 ]; then
-    top_sim_log "run_tests TIMED OUT after ${TOP_SIM_TEST_TIMEOUT:-3000} s"; status=1
+    top_sim_log "run_tests TIMED OUT after $timeout_s s"; status=1
   elif [ "$rc" -ne 0 ]; then
     top_sim_log "run_tests FAILED (exit $rc)"; status=1
   fi
 fi
 
 set +e
-/usr/bin/python3 - "$results" "$status" <<'PY'
+/usr/bin/python3 - "$status" "$plain_results" "$results" <<'PY'
 # Counts test cases in the JUnit XML files of catkin's test_results directory.
 import os, sys
 import xml.etree.ElementTree as ET
 
-root_dir = sys.argv[1]
-earlier_failure = sys.argv[2] != '0'   # install, build or run_tests failed before any XML was read
+earlier_failure = sys.argv[1] != '0'   # install, build or run_tests failed before any XML was read
+root_dirs = sys.argv[2:]
 files = []
-for dirpath, dirnames, filenames in os.walk(root_dir):
-    dirnames.sort()
-    files += [os.path.join(dirpath, f) for f in sorted(filenames) if f.endswith('.xml')]
+for root_dir in root_dirs:
+    for dirpath, dirnames, filenames in os.walk(root_dir):
+        dirnames.sort()
+        files += [(root_dir, os.path.join(dirpath, f)) for f in sorted(filenames) if f.endswith('.xml')]
 
 def first_lines(text, n=20):
     lines = text.strip().splitlines()
@@ -67,13 +89,16 @@ def wrapper_duplicate(path, case, failed):
     # rosunit-<node>.xml; a passing wrapper case only says that file exists, so it is not counted twice.
     base = os.path.basename(path)
     name = case.get('name', '')
+    # ctest.xml has one case per ctest test; a passing one whose suite wrote <name>.xml is counted there.
+    if base == 'ctest.xml':
+        return not failed and os.path.isfile(os.path.join(os.path.dirname(path), name + '.xml'))
     return (base.startswith('rostest-') and not failed and name.startswith('test')
             and os.path.isfile(os.path.join(os.path.dirname(path), 'rosunit-%s.xml' % name[4:])))
 
 passed = failed = skipped = 0
 per_file = []
-for path in files:
-    name = os.path.relpath(path, root_dir)
+for root_dir, path in files:
+    name = os.path.relpath(path, os.path.dirname(root_dir.rstrip('/')))
     out = ['== %s' % name]
     try:
         tree = ET.parse(path)
@@ -112,7 +137,7 @@ for path in files:
     per_file.append((name, fp, ff, fs))
 
 print()
-print('Summary (%s):' % root_dir)
+print('Summary (%s):' % ', '.join(root_dirs))
 for name, fp, ff, fs in per_file:
     print('  %-56s %4d passed %4d failed %4d skipped' % (name, fp, ff, fs))
 if not files:
