@@ -13,7 +13,7 @@ namespace {
 using namespace top_sim;
 
 Scene scene_named(const std::string& name) {
-  return load_scene(std::string(TOP_SIM_BENCH_CONFIG_DIR) + "/scenes/" + name + ".yaml");
+  return load_scene(default_config_dir() + "/scenes/" + name + ".yaml");
 }
 
 // A whole scene run; counters: steps, rosenbrock4 steps across the slip-onset layer, mode switches.

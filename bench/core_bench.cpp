@@ -12,7 +12,7 @@ namespace {
 
 using namespace top_sim;
 
-Scene default_scene() { return load_scene(std::string(TOP_SIM_BENCH_CONFIG_DIR) + "/scenes/default.yaml"); }
+Scene default_scene() { return load_scene(default_config_dir() + "/scenes/default.yaml"); }
 
 // A nutating state (default scene after 0.37 s): every term of the right-hand side is non-trivial there.
 StateVector nutating_state(const Scene& scene) {

@@ -24,12 +24,12 @@ if [ -n "${TOP_SIM_BIN_DIR:-}" ]; then
 else
   BUILD=${TOP_SIM_FIG_BUILD:-${TMPDIR:-/tmp}/top_sim_figures_build}
   log "building top_sim_run and top_sim_sweep in $BUILD"
-  cmake -S "$REPO" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-    -DCATKIN_DEVEL_PREFIX="$BUILD/devel" -DCATKIN_ENABLE_TESTING=OFF >"$RAW/cmake.log" 2>&1 \
+  cmake -S "$REPO" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DTOP_SIM_ROS=OFF -DTOP_SIM_TESTS=OFF \
+    -DTOP_SIM_PYTHON=OFF >"$RAW/cmake.log" 2>&1 \
     || { cat "$RAW/cmake.log" >&2; exit 1; }
   make -C "$BUILD" -j"${TOP_SIM_JOBS:-2}" top_sim_run top_sim_sweep >"$RAW/make.log" 2>&1 \
     || { tail -50 "$RAW/make.log" >&2; exit 1; }
-  BIN=$(dirname "$(find "$BUILD" -name top_sim_sweep -type f -perm -u+x | head -1)")
+  BIN=$BUILD/bin
 fi
 RUN=$BIN/top_sim_run
 SWEEP=$BIN/top_sim_sweep

@@ -12,13 +12,11 @@ DATA=$ROOT/docs/data
 IMG=$ROOT/docs/img
 mkdir -p "$DATA" "$IMG"
 
-cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DPYTHON_EXECUTABLE=/usr/bin/python3 \
-  -DCATKIN_DEVEL_PREFIX="$BUILD/devel" > "$BUILD.cmake.log"
+cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DTOP_SIM_ROS=OFF -DTOP_SIM_TESTS=OFF \
+  -DTOP_SIM_PYTHON=OFF > "$BUILD.cmake.log"
 make -C "$BUILD" -j2 top_sim_study top_sim_run core_bench > "$BUILD.make.log"
-# The newest match: an older CMake layout may have left a stale copy elsewhere in the build tree.
-find_bin() { find "$BUILD" -name "$1" -type f -executable -printf '%T@ %p\n' | sort -n | tail -1 | cut -d' ' -f2-; }
-STUDY=$(find_bin top_sim_study)
-BENCH=$(find_bin core_bench)
+STUDY=$BUILD/bin/top_sim_study
+BENCH=$BUILD/bin/core_bench
 
 "$STUDY" $QUICK --config "$ROOT/config" --out "$DATA" all
 "$BENCH" --benchmark_out="$DATA/perf_bench.json" --benchmark_out_format=json --benchmark_min_time=0.5 \

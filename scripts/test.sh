@@ -98,7 +98,7 @@ def wrapper_duplicate(path, case, failed):
 passed = failed = skipped = 0
 per_file = []
 for root_dir, path in files:
-    name = os.path.relpath(path, os.path.dirname(root_dir.rstrip('/')))
+    name = ('plain/' if root_dir == root_dirs[0] else 'catkin/') + os.path.relpath(path, root_dir)
     out = ['== %s' % name]
     try:
         tree = ET.parse(path)
