@@ -95,14 +95,16 @@ class FixedStepper : public Stepper {
   }
 
  private:
-  // Velocities (u, omega, nu, W) first from the old state, then positions (p, f_hat, psi) with the new velocities.
+  // Velocities (u, omega, nu, W, gap rate) first from the old state, then positions (p, f_hat, psi, gap) with the
+  // new velocities.
   void semi_implicit_step(const CountingSystem& sys, double h) {
     StateVector d;
     sys(y_, d, t_);
-    for (std::size_t i : {idx::u, idx::u + 1, idx::omega, idx::omega + 1, idx::omega + 2, idx::nu, idx::w_diss})
+    for (std::size_t i : {idx::u, idx::u + 1, idx::omega, idx::omega + 1, idx::omega + 2, idx::nu, idx::w_diss,
+                          idx::gap_rate})
       y_[i] += h * d[i];
     sys(y_, d, t_);  // position rates with the new velocities (their own velocity rates are unused)
-    for (std::size_t i : {idx::x, idx::x + 1, idx::f, idx::f + 1, idx::f + 2, idx::psi}) y_[i] += h * d[i];
+    for (std::size_t i : {idx::x, idx::x + 1, idx::f, idx::f + 1, idx::f + 2, idx::psi, idx::gap}) y_[i] += h * d[i];
   }
 
   Method method_;
