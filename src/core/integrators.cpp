@@ -153,12 +153,14 @@ class Dopri5Stepper : public Stepper {
   void reset(const StateVector& y, double t, double dt) {
     dense_.initialize(y, t, dt);
     renormalized_ = false;
+    restarted_ = true;
   }
   double next_step_size() const { return next_dt_; }
 
   void step(double) override {
     CountingSystem sys{&system_, &stats.rhs_evaluations};
     dense_.do_step(sys);
+    restarted_ = false;
     StateVector y = dense_.current_state();
     // Renormalise f_hat only when it has drifted: re-initialising costs one right-hand side.
     const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
@@ -173,12 +175,13 @@ class Dopri5Stepper : public Stepper {
   }
 
   double time() const override { return dense_.current_time(); }
-  double previous_time() const override { return interval().previous_time(); }
+  // After reset() odeint keeps the last step's interval (initialize() does not clear it): there is none to offer.
+  double previous_time() const override { return restarted_ ? time() : interval().previous_time(); }
   const StateVector& state() const override { return dense_.current_state(); }
   double last_step_size() const override { return time() - previous_time(); }
 
   void state_at(double t, StateVector& y) const override {
-    if (t >= time()) {
+    if (t >= time() || restarted_) {
       y = dense_.current_state();
       return;
     }
@@ -194,6 +197,7 @@ class Dopri5Stepper : public Stepper {
   Dense dense_, last_;
   double next_dt_ = 0.0;
   bool renormalized_ = false;
+  bool restarted_ = true;  // no step since reset()
 };
 
 // ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------
@@ -271,11 +275,13 @@ class Rosenbrock4Stepper : public Stepper {
     std::copy(y.begin(), y.end(), x_.begin());
     current().initialize(x_, t, dt);
     renormalized_ = false;
+    restarted_ = true;
     copy_current();
   }
 
   void step(double) override {
     current().do_step(std::make_pair(Rhs{this}, Jacobian{this}));
+    restarted_ = false;
     next_dt_ = current().current_time_step();
     StateVector y;
     std::copy(current().current_state().begin(), current().current_state().end(), y.begin());
@@ -294,13 +300,14 @@ class Rosenbrock4Stepper : public Stepper {
   }
 
   double time() const override { return dense_[active_].current_time(); }
-  double previous_time() const override { return interval().previous_time(); }
+  // After reset() odeint keeps the last step's interval (initialize() does not clear it): there is none to offer.
+  double previous_time() const override { return restarted_ ? time() : interval().previous_time(); }
   const StateVector& state() const override { return current_; }
   double last_step_size() const override { return time() - previous_time(); }
   double next_step_size() const { return next_dt_; }
 
   void state_at(double t, StateVector& y) const override {
-    if (t >= time()) {
+    if (t >= time() || restarted_) {
       y = current_;
       return;
     }
@@ -324,6 +331,7 @@ class Rosenbrock4Stepper : public Stepper {
   StateVector current_{};
   double next_dt_ = 0.0;
   bool renormalized_ = false;
+  bool restarted_ = true;  // no step since reset()
 };
 
 // ---- dopri5 / rosenbrock4 switch ---------------------------------------------------------------------------
