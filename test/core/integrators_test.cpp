@@ -433,6 +433,27 @@ TEST(IntegratorCounts, FixedStepMethodsEvaluateTheirStagesOncePerStep) {
   }
 }
 
+// A first step of 1 s errs ~1e-3 here, far beyond tol 1e-10: the controller must reject it, and the stats say so.
+TEST(IntegratorCounts, AdaptiveMethodsCountTheStepsTheyReject) {
+  for (Method m : kAdaptive) {
+    SCOPED_TRACE(to_string(m));
+    IntegratorSettings s = adaptive_settings(m, 1e-10);
+    s.dt = 1.0;
+    std::unique_ptr<Stepper> st = started(s);
+    st->step(10.0);
+    EXPECT_EQ(st->stats.steps, 1u);
+    EXPECT_GE(st->stats.rejected, 1u);
+    EXPECT_LT(st->last_step_size(), 0.5);
+    // dopri5 (first same as last): one start derivative, 6 stages per attempt, 1 more if f_hat was renormalised.
+    const std::uint64_t attempts = st->stats.steps + st->stats.rejected;
+    if (m != Method::rosenbrock4) {
+      EXPECT_GE(st->stats.rhs_evaluations, 1 + 6 * attempts);
+      EXPECT_LE(st->stats.rhs_evaluations, 2 + 6 * attempts);
+    }
+    note(std::string(to_string(m)) + ": rejected first steps", static_cast<double>(st->stats.rejected));
+  }
+}
+
 // Constant rates: every method is exact after one step, so each component with a non-zero rate moves by dt * rate
 // (f_hat, renormalised after each step, gets rate 0).
 TEST(IntegratorSteps, OneStepOfConstantRatesMovesEveryComponent) {
