@@ -137,17 +137,34 @@ class PhaseFreeErrorChecker {
   double atol_, rtol_;
 };
 
+// odeint's step adjuster, counting rejections: the controller shrinks a step only when it rejects it.
+class CountingAdjuster : public odeint::default_step_adjuster<double, double> {
+  using Base = odeint::default_step_adjuster<double, double>;
+
+ public:
+  explicit CountingAdjuster(double max_dt = 0.0, std::uint64_t* rejected = nullptr)
+      : Base(max_dt), rejected_(rejected) {}
+  double decrease_step(double dt, double error, int error_order) const {
+    if (rejected_) ++*rejected_;
+    return Base::decrease_step(dt, error, error_order);
+  }
+
+ private:
+  std::uint64_t* rejected_;
+};
+
 class Dopri5Stepper : public Stepper {
   using Base = odeint::runge_kutta_dopri5<StateVector>;
-  using Adjuster = odeint::default_step_adjuster<double, double>;
-  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, Adjuster>;
+  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, CountingAdjuster>;
   using Dense = odeint::dense_output_runge_kutta<Controlled>;
 
  public:
   Dopri5Stepper(const IntegratorSettings& s, System system)
       : settings_(s),
         system_(std::move(system)),
-        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), Adjuster(s.max_dt))) {}
+        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), CountingAdjuster(s.max_dt, &stats.rejected))) {}
+  Dopri5Stepper(const Dopri5Stepper&) = delete;  // the controller points at this object's stats
+  Dopri5Stepper& operator=(const Dopri5Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
@@ -208,15 +225,20 @@ using UVector = boost::numeric::ublas::vector<double>;
 constexpr double kJacobianStep = 1e-6;
 using UMatrix = boost::numeric::ublas::matrix<double>;
 
-// odeint's Rosenbrock 4 with the spin phase excluded from its error estimate.
+// odeint's Rosenbrock 4 with the spin phase excluded from its error estimate; counts the steps its controller tries.
 class PhaseFreeRosenbrock4 : public odeint::rosenbrock4<double> {
  public:
+  explicit PhaseFreeRosenbrock4(std::uint64_t* attempts = nullptr) : attempts_(attempts) {}
   using odeint::rosenbrock4<double>::do_step;
   template <class System>
   void do_step(System system, const state_type& x, time_type t, state_type& xout, time_type dt, state_type& xerr) {
+    if (attempts_) ++*attempts_;
     odeint::rosenbrock4<double>::do_step(system, x, t, xout, dt, xerr);
     xerr[idx::psi] = 0.0;
   }
+
+ private:
+  std::uint64_t* attempts_;
 };
 
 class Rosenbrock4Stepper : public Stepper {
@@ -267,8 +289,11 @@ class Rosenbrock4Stepper : public Stepper {
       : settings_(s),
         system_(std::move(system)),
         difference_steps_(std::move(difference_steps)),
-        dense_{Dense(Controller(s.atol, s.rtol, s.max_dt)), Dense(Controller(s.atol, s.rtol, s.max_dt))},
+        dense_{Dense(Controller(s.atol, s.rtol, s.max_dt, PhaseFreeRosenbrock4(&attempts_))),
+               Dense(Controller(s.atol, s.rtol, s.max_dt, PhaseFreeRosenbrock4(&attempts_)))},
         x_(idx::size) {}
+  Rosenbrock4Stepper(const Rosenbrock4Stepper&) = delete;  // the steppers point at this object's attempt count
+  Rosenbrock4Stepper& operator=(const Rosenbrock4Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
@@ -280,7 +305,9 @@ class Rosenbrock4Stepper : public Stepper {
   }
 
   void step(double) override {
+    const std::uint64_t tried = attempts_;
     current().do_step(std::make_pair(Rhs{this}, Jacobian{this}));
+    stats.rejected += attempts_ - tried - 1;  // odeint retries a rejected step inside do_step()
     restarted_ = false;
     next_dt_ = current().current_time_step();
     StateVector y;
@@ -325,6 +352,7 @@ class Rosenbrock4Stepper : public Stepper {
   IntegratorSettings settings_;
   System system_;
   DifferenceSteps difference_steps_;
+  std::uint64_t attempts_ = 0;  // steps tried by either twin's controller
   mutable Dense dense_[2];
   int active_ = 0;
   UVector x_;
