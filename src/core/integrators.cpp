@@ -95,14 +95,16 @@ class FixedStepper : public Stepper {
   }
 
  private:
-  // Velocities (u, omega, nu, W) first from the old state, then positions (p, f_hat, psi) with the new velocities.
+  // Velocities (u, omega, nu, W, gap rate) first from the old state, then positions (p, f_hat, psi, gap) with the
+  // new velocities.
   void semi_implicit_step(const CountingSystem& sys, double h) {
     StateVector d;
     sys(y_, d, t_);
-    for (std::size_t i : {idx::u, idx::u + 1, idx::omega, idx::omega + 1, idx::omega + 2, idx::nu, idx::w_diss})
+    for (std::size_t i : {idx::u, idx::u + 1, idx::omega, idx::omega + 1, idx::omega + 2, idx::nu, idx::w_diss,
+                          idx::gap_rate})
       y_[i] += h * d[i];
     sys(y_, d, t_);  // position rates with the new velocities (their own velocity rates are unused)
-    for (std::size_t i : {idx::x, idx::x + 1, idx::f, idx::f + 1, idx::f + 2, idx::psi}) y_[i] += h * d[i];
+    for (std::size_t i : {idx::x, idx::x + 1, idx::f, idx::f + 1, idx::f + 2, idx::psi, idx::gap}) y_[i] += h * d[i];
   }
 
   Method method_;
@@ -135,28 +137,47 @@ class PhaseFreeErrorChecker {
   double atol_, rtol_;
 };
 
+// odeint's step adjuster, counting rejections: the controller shrinks a step only when it rejects it.
+class CountingAdjuster : public odeint::default_step_adjuster<double, double> {
+  using Base = odeint::default_step_adjuster<double, double>;
+
+ public:
+  explicit CountingAdjuster(double max_dt = 0.0, std::uint64_t* rejected = nullptr)
+      : Base(max_dt), rejected_(rejected) {}
+  double decrease_step(double dt, double error, int error_order) const {
+    if (rejected_) ++*rejected_;
+    return Base::decrease_step(dt, error, error_order);
+  }
+
+ private:
+  std::uint64_t* rejected_;
+};
+
 class Dopri5Stepper : public Stepper {
   using Base = odeint::runge_kutta_dopri5<StateVector>;
-  using Adjuster = odeint::default_step_adjuster<double, double>;
-  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, Adjuster>;
+  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, CountingAdjuster>;
   using Dense = odeint::dense_output_runge_kutta<Controlled>;
 
  public:
   Dopri5Stepper(const IntegratorSettings& s, System system)
       : settings_(s),
         system_(std::move(system)),
-        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), Adjuster(s.max_dt))) {}
+        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), CountingAdjuster(s.max_dt, &stats.rejected))) {}
+  Dopri5Stepper(const Dopri5Stepper&) = delete;  // the controller points at this object's stats
+  Dopri5Stepper& operator=(const Dopri5Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
     dense_.initialize(y, t, dt);
     renormalized_ = false;
+    restarted_ = true;
   }
   double next_step_size() const { return next_dt_; }
 
   void step(double) override {
     CountingSystem sys{&system_, &stats.rhs_evaluations};
     dense_.do_step(sys);
+    restarted_ = false;
     StateVector y = dense_.current_state();
     // Renormalise f_hat only when it has drifted: re-initialising costs one right-hand side.
     const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
@@ -171,12 +192,13 @@ class Dopri5Stepper : public Stepper {
   }
 
   double time() const override { return dense_.current_time(); }
-  double previous_time() const override { return interval().previous_time(); }
+  // After reset() odeint keeps the last step's interval (initialize() does not clear it): there is none to offer.
+  double previous_time() const override { return restarted_ ? time() : interval().previous_time(); }
   const StateVector& state() const override { return dense_.current_state(); }
   double last_step_size() const override { return time() - previous_time(); }
 
   void state_at(double t, StateVector& y) const override {
-    if (t >= time()) {
+    if (t >= time() || restarted_) {
       y = dense_.current_state();
       return;
     }
@@ -192,6 +214,7 @@ class Dopri5Stepper : public Stepper {
   Dense dense_, last_;
   double next_dt_ = 0.0;
   bool renormalized_ = false;
+  bool restarted_ = true;  // no step since reset()
 };
 
 // ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------
@@ -202,15 +225,20 @@ using UVector = boost::numeric::ublas::vector<double>;
 constexpr double kJacobianStep = 1e-6;
 using UMatrix = boost::numeric::ublas::matrix<double>;
 
-// odeint's Rosenbrock 4 with the spin phase excluded from its error estimate.
+// odeint's Rosenbrock 4 with the spin phase excluded from its error estimate; counts the steps its controller tries.
 class PhaseFreeRosenbrock4 : public odeint::rosenbrock4<double> {
  public:
+  explicit PhaseFreeRosenbrock4(std::uint64_t* attempts = nullptr) : attempts_(attempts) {}
   using odeint::rosenbrock4<double>::do_step;
   template <class System>
   void do_step(System system, const state_type& x, time_type t, state_type& xout, time_type dt, state_type& xerr) {
+    if (attempts_) ++*attempts_;
     odeint::rosenbrock4<double>::do_step(system, x, t, xout, dt, xerr);
     xerr[idx::psi] = 0.0;
   }
+
+ private:
+  std::uint64_t* attempts_;
 };
 
 class Rosenbrock4Stepper : public Stepper {
@@ -261,19 +289,26 @@ class Rosenbrock4Stepper : public Stepper {
       : settings_(s),
         system_(std::move(system)),
         difference_steps_(std::move(difference_steps)),
-        dense_{Dense(Controller(s.atol, s.rtol, s.max_dt)), Dense(Controller(s.atol, s.rtol, s.max_dt))},
+        dense_{Dense(Controller(s.atol, s.rtol, s.max_dt, PhaseFreeRosenbrock4(&attempts_))),
+               Dense(Controller(s.atol, s.rtol, s.max_dt, PhaseFreeRosenbrock4(&attempts_)))},
         x_(idx::size) {}
+  Rosenbrock4Stepper(const Rosenbrock4Stepper&) = delete;  // the steppers point at this object's attempt count
+  Rosenbrock4Stepper& operator=(const Rosenbrock4Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
     std::copy(y.begin(), y.end(), x_.begin());
     current().initialize(x_, t, dt);
     renormalized_ = false;
+    restarted_ = true;
     copy_current();
   }
 
   void step(double) override {
+    const std::uint64_t tried = attempts_;
     current().do_step(std::make_pair(Rhs{this}, Jacobian{this}));
+    stats.rejected += attempts_ - tried - 1;  // odeint retries a rejected step inside do_step()
+    restarted_ = false;
     next_dt_ = current().current_time_step();
     StateVector y;
     std::copy(current().current_state().begin(), current().current_state().end(), y.begin());
@@ -292,13 +327,14 @@ class Rosenbrock4Stepper : public Stepper {
   }
 
   double time() const override { return dense_[active_].current_time(); }
-  double previous_time() const override { return interval().previous_time(); }
+  // After reset() odeint keeps the last step's interval (initialize() does not clear it): there is none to offer.
+  double previous_time() const override { return restarted_ ? time() : interval().previous_time(); }
   const StateVector& state() const override { return current_; }
   double last_step_size() const override { return time() - previous_time(); }
   double next_step_size() const { return next_dt_; }
 
   void state_at(double t, StateVector& y) const override {
-    if (t >= time()) {
+    if (t >= time() || restarted_) {
       y = current_;
       return;
     }
@@ -316,12 +352,14 @@ class Rosenbrock4Stepper : public Stepper {
   IntegratorSettings settings_;
   System system_;
   DifferenceSteps difference_steps_;
+  std::uint64_t attempts_ = 0;  // steps tried by either twin's controller
   mutable Dense dense_[2];
   int active_ = 0;
   UVector x_;
   StateVector current_{};
   double next_dt_ = 0.0;
   bool renormalized_ = false;
+  bool restarted_ = true;  // no step since reset()
 };
 
 // ---- dopri5 / rosenbrock4 switch ---------------------------------------------------------------------------
