@@ -10,7 +10,7 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   target_compile_definitions(top_sim_core_tests PRIVATE
     TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
     TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>")
-  add_dependencies(top_sim_core_tests top_sim_run)
+  add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep)  # the CLI tests run both
   add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
 
   # Another CMake project links the installed core through find_package(top_sim_core).
