@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/plane.hpp"
 
 namespace top_sim {
 
@@ -27,21 +28,6 @@ struct Top {
   bool has_rotor = false;
   Rotor rotor;
 };
-
-// The inclined plane; gravity in the plane frame is cached because every right-hand side needs it.
-struct Plane {
-  double inclination = 0.1;  // alpha [rad]
-  double gravity = 9.81;     // g [m/s^2]
-  Eigen::Vector3d g_plane = Eigen::Vector3d(0.0, -9.81 * std::sin(0.1), -9.81 * std::cos(0.1));
-};
-
-inline Plane make_plane(double inclination, double gravity) {
-  Plane p;
-  p.inclination = inclination;
-  p.gravity = gravity;
-  p.g_plane = Eigen::Vector3d(0.0, -gravity * std::sin(inclination), -gravity * std::cos(inclination));
-  return p;
-}
 
 enum class NormalForceModel { constrained, static_approximation };
 enum class ModelKind { full, adiabatic };

@@ -5,6 +5,8 @@
 #include <iomanip>
 #include <sstream>
 
+#include "top_sim/plane.hpp"
+
 namespace top_sim {
 
 namespace {
@@ -37,8 +39,6 @@ double thread_cpu_seconds() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
-
-double travel_angle(double dx, double dy) { return std::atan2(-dy, dx); }
 
 RunResult run(Simulator& sim, const RunOptions& opt) {
   RunResult r;

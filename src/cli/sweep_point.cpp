@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "top_sim/plane.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {
@@ -65,9 +66,8 @@ Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
     // Start inside the sleeping state's basin: slip near s*, not s = 1 (which runs away close to alpha_c).
     const StationaryState st = stationary_state(scene.model, p.spin);
     if (st.exists) {
-      // The initial keys are world-frame: f_hat* from the plane frame P to W (R_WP = Rot_x(alpha)).
-      const double ca = std::cos(p.alpha), sa = std::sin(p.alpha);
-      const Eigen::Vector3d f_w(st.f_hat.x(), ca * st.f_hat.y() - sa * st.f_hat.z(), sa * st.f_hat.y() + ca * st.f_hat.z());
+      // The initial keys are world-frame.
+      const Eigen::Vector3d f_w = plane_to_world(p.alpha, st.f_hat);
       scene.initial.tilt = std::acos(std::clamp(f_w.z(), -1.0, 1.0)) + settings.launch_perturbation;
       scene.initial.tilt_azimuth = std::atan2(f_w.y(), f_w.x());
       scene.initial.velocity = st.velocity;

@@ -421,11 +421,8 @@ StateVector initial_state(const Scene& scene) {
     const StationaryState st = stationary_state(model, ic.spin);
     return stationary_state_vector(model, st, ic.spin, ic.position, ic.rotor_spin);
   }
-  // World -> plane: v_P = Rot_x(alpha)^T v_W.
-  const double ca = std::cos(model.plane.inclination), sa = std::sin(model.plane.inclination);
-  auto to_plane = [ca, sa](const Eigen::Vector3d& v) {
-    return Eigen::Vector3d(v.x(), ca * v.y() + sa * v.z(), -sa * v.y() + ca * v.z());
-  };
+  // The initial keys are world-frame.
+  auto to_plane = [&model](const Eigen::Vector3d& v) { return world_to_plane(model.plane.inclination, v); };
   const Eigen::Vector3d f_hat = to_plane(Eigen::Vector3d(std::sin(ic.tilt) * std::cos(ic.tilt_azimuth),
                                                          std::sin(ic.tilt) * std::sin(ic.tilt_azimuth), std::cos(ic.tilt)));
   const Eigen::Vector3d w_t = to_plane(Eigen::Vector3d(ic.angular_velocity_transverse.x(), ic.angular_velocity_transverse.y(), 0.0));

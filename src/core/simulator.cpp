@@ -462,7 +462,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.friction_force = dyn.friction_force;
     s.com_acceleration = dyn.a_cm;
   }
-  s.phi = (u.x() == 0.0 && u.y() == 0.0) ? 0.0 : std::atan2(-u.y(), u.x());
+  s.phi = travel_angle(u.x(), u.y());
   s.has_stationary_state = stationary.exists && stationary.phi_defined;
   s.phi_star = s.has_stationary_state ? stationary.phi : 0.0;
   s.indicators = regime_indicators(model, y, dyn);

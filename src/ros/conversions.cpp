@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "top_sim/plane.hpp"
+
 namespace top_sim_ros {
 
 namespace {
@@ -122,9 +124,7 @@ void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Fra
   world_plane.header.frame_id = frames.world;
   world_plane.child_frame_id = frames.plane;
   world_plane.transform.translation = geometry_msgs::Vector3();
-  // Plane y is uphill: rotating world about x by +alpha lifts it.
-  world_plane.transform.rotation =
-      quaternion(Eigen::Quaterniond(Eigen::AngleAxisd(s.alpha, Eigen::Vector3d::UnitX())));
+  world_plane.transform.rotation = quaternion(top_sim::plane_rotation(s.alpha));
   plane_top.header.stamp = stamp;
   plane_top.header.frame_id = frames.plane;
   plane_top.child_frame_id = frames.top;
