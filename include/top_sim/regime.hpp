@@ -1,14 +1,18 @@
 // Regime classification published with the state (physics.md section 8).
 #pragma once
 
+#include <cstdint>
+
 #include "top_sim/dynamics.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"
 
 namespace top_sim {
 
-enum class Regime { nutating, precessing, sleeping, sliding, contact_fault };
+// The values are the regime codes of the messages (TopState.msg, top_state_t.lcm), whose adapters assert them.
+enum class Regime { nutating = 0, precessing = 1, sleeping = 2, sliding = 3, contact_fault = 4 };
 
+constexpr std::uint8_t code(Regime r) { return static_cast<std::uint8_t>(r); }
 const char* to_string(Regime r);
 
 // The quantities the classification reads.

@@ -63,25 +63,15 @@ bool all_finite(const top_sim::Snapshot& s) {
          finite3(s.angular_velocity) && finite3(s.friction_force);
 }
 
-uint8_t regime_code(top_sim::Regime r) {
-  switch (r) {
-    case top_sim::Regime::nutating: return top_sim::TopState::NUTATING;
-    case top_sim::Regime::precessing: return top_sim::TopState::PRECESSING;
-    case top_sim::Regime::sleeping: return top_sim::TopState::SLEEPING;
-    case top_sim::Regime::sliding: return top_sim::TopState::SLIDING;
-    case top_sim::Regime::contact_fault: return top_sim::TopState::CONTACT_FAULT;
-  }
-  return top_sim::TopState::CONTACT_FAULT;
-}
-
-uint8_t contact_mode_code(top_sim::ContactMode m) {
-  switch (m) {
-    case top_sim::ContactMode::slipping: return top_sim::TopState::SLIPPING;
-    case top_sim::ContactMode::rolling: return top_sim::TopState::ROLLING;
-    case top_sim::ContactMode::flight: return top_sim::TopState::FLIGHT;
-  }
-  return top_sim::TopState::SLIPPING;
-}
+// The message's constants are the core's codes (msg/TopState.msg keeps their values).
+static_assert(top_sim::TopState::NUTATING == top_sim::code(top_sim::Regime::nutating), "TopState regime code");
+static_assert(top_sim::TopState::PRECESSING == top_sim::code(top_sim::Regime::precessing), "TopState regime code");
+static_assert(top_sim::TopState::SLEEPING == top_sim::code(top_sim::Regime::sleeping), "TopState regime code");
+static_assert(top_sim::TopState::SLIDING == top_sim::code(top_sim::Regime::sliding), "TopState regime code");
+static_assert(top_sim::TopState::CONTACT_FAULT == top_sim::code(top_sim::Regime::contact_fault), "TopState regime code");
+static_assert(top_sim::TopState::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "TopState mode code");
+static_assert(top_sim::TopState::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "TopState mode code");
+static_assert(top_sim::TopState::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "TopState mode code");
 
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out) {
@@ -107,9 +97,9 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
   out.phi = s.phi;
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;
-  out.regime = regime_code(s.regime);
+  out.regime = top_sim::code(s.regime);
   out.regime_name = top_sim::to_string(s.regime);
-  out.contact_mode = contact_mode_code(s.contact_mode);
+  out.contact_mode = top_sim::code(s.contact_mode);
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
   out.gap = s.gap;
   out.energy = s.energy;

@@ -115,8 +115,8 @@ TEST(Snapshot, NonFiniteValuesAreDetected) {
 }
 
 TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
-  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::sleeping), top_sim::TopState::SLEEPING);
-  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::contact_fault), top_sim::TopState::CONTACT_FAULT);
+  EXPECT_EQ(top_sim::code(top_sim::Regime::sleeping), top_sim::TopState::SLEEPING);
+  EXPECT_EQ(top_sim::code(top_sim::Regime::contact_fault), top_sim::TopState::CONTACT_FAULT);
   top_sim::Snapshot s;
   s.t = 2.5;
   s.regime = top_sim::Regime::sliding;
@@ -128,9 +128,9 @@ TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
 }
 
 TEST(TopStateMsg, ContactModeAndGapAreMapped) {
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::slipping), top_sim::TopState::SLIPPING);
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::rolling), top_sim::TopState::ROLLING);
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::flight), top_sim::TopState::FLIGHT);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::slipping), top_sim::TopState::SLIPPING);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::rolling), top_sim::TopState::ROLLING);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::flight), top_sim::TopState::FLIGHT);
   const struct {
     top_sim::ContactMode mode;
     uint8_t code;
