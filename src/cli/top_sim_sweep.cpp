@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "sweep_point.hpp"
+#include "top_sim/friction.hpp"
 
 namespace {
 
@@ -134,8 +135,8 @@ int main(int argc, char** argv) {
                             "nonzero with |spin| <= 1e5 [rad/s]");
       } else if (a == "--mu-c" || a == "--s-c") {
         const bool mu = a == "--mu-c";
-        const auto v = mu ? number_list(a, value(), [](double x) { return x > 0.0; }, "> 0")
-                          : number_list(a, value(), [](double x) { return x > 0.0 && x <= 1.0; }, "in (0, 1]");
+        const top_sim::ParameterRange range = top_sim::find_friction_parameter(mu ? "mu_c" : "s_c")->range;
+        const auto v = number_list(a, value(), [range](double x) { return range.admits(x); }, range.text());
         auto& target = mu ? mu_cs : s_cs;
         target.assign(v.begin(), v.end());
       } else if (a == "--top") {

@@ -177,53 +177,47 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
 
 }  // namespace
 
+// A key of another law is an error that names both laws and the keys this law takes.
+static void reject_foreign_parameter(Section& s, const std::string& file, const char* key, FrictionLawKind owner,
+                                     FrictionLawKind kind) {
+  if (kind == owner || !s.has(key)) return;
+  const std::string name = to_string(kind);
+  throw SceneError(file, join(s.path(), key),
+                   show(s.raw(key)) + " is not a parameter of law " + name + " (it belongs to law " +
+                       to_string(owner) + "); law " + name + " takes: " + friction_parameter_names(kind) +
+                       ", regularization_speed, static");
+}
+
+static std::vector<std::pair<double, double>> read_friction_points(Section& s, const std::string& file) {
+  std::vector<std::pair<double, double>> points;
+  const YAML::Node pts = s.raw(kFrictionPointsKey);
+  const std::string key = join(s.path(), kFrictionPointsKey);
+  if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
+    points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
+                        s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
+  }
+  return points;
+}
+
 static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps,
                                      std::optional<double>& static_friction) {
   FrictionLaw law;
-  const std::string kind = s.word("law", "paper", {"paper", "linearized", "coulomb", "table"});
-  parse_friction_law_kind(kind, law.kind);  // word() admitted only the four names
+  std::vector<std::string> names;
+  for (const FrictionLawName& n : kFrictionLawNames) names.push_back(n.name);
+  const std::string kind = s.word("law", "paper", names);
+  parse_friction_law_kind(kind, law.kind);  // word() admitted only the laws' names
   v_eps = s.number("regularization_speed", 1.0e-9, positive, "> 0 [m/s]");
-  static const char* const accepted[] = {"mu_c, s_c", "mu0, k, s0", "mu", "points"};  // by FrictionLawKind
-  auto only_for = [&](const char* key, FrictionLawKind owner) {
-    if (law.kind != owner && s.has(key))
-      throw SceneError(file, join(s.path(), key),
-                       show(s.raw(key)) + " is not a parameter of law " + kind + " (it belongs to law " +
-                           to_string(owner) + "); law " + kind + " takes: " +
-                           accepted[static_cast<int>(law.kind)] + ", regularization_speed, static");
-  };
-  only_for("mu_c", FrictionLawKind::paper);
-  only_for("s_c", FrictionLawKind::paper);
-  only_for("mu0", FrictionLawKind::linearized);
-  only_for("k", FrictionLawKind::linearized);
-  only_for("s0", FrictionLawKind::linearized);
-  only_for("mu", FrictionLawKind::coulomb);
-  only_for("points", FrictionLawKind::table);
-  switch (law.kind) {
-    case FrictionLawKind::paper:
-      law.mu_c = s.number("mu_c", law.mu_c, positive, "> 0");
-      law.s_c = s.number("s_c", law.s_c, [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
-      break;
-    case FrictionLawKind::linearized:
-      law.mu0 = s.number("mu0", law.mu0, finite, "a finite number");
-      law.k = s.number("k", law.k, finite, "a finite number");
-      law.s0 = s.number("s0", law.s0, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
-      break;
-    case FrictionLawKind::coulomb:
-      law.mu = s.number("mu", law.mu, non_negative, ">= 0");
-      break;
-    case FrictionLawKind::table: {
-      const YAML::Node pts = s.raw("points");
-      const std::string key = join(s.path(), "points");
-      if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        const std::string k = key + "[" + std::to_string(i) + "]";
-        if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
-        law.points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
-                                s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
-      }
-      break;
-    }
+  for (const FrictionParameter& p : kFrictionParameters) reject_foreign_parameter(s, file, p.name, p.law, law.kind);
+  reject_foreign_parameter(s, file, kFrictionPointsKey, kFrictionPointsLaw, law.kind);
+  for (const FrictionParameter& p : kFrictionParameters) {
+    if (p.law != law.kind) continue;
+    const ParameterRange range = p.range;
+    law.*p.member = s.number(p.name, law.*p.member, [range](double v) { return range.admits(v); }, range.text());
   }
+  if (law.kind == kFrictionPointsLaw) law.points = read_friction_points(s, file);
   const std::string e = validate(law);
   if (!e.empty()) throw SceneError(file, "", e);
   if (s.has("static")) {

@@ -201,16 +201,13 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
   if (msg.set_friction) {
     top_sim::FrictionLaw law;
     if (!top_sim::parse_friction_law_kind(msg.friction_law, law.kind)) {
-      error = "friction_law = '" + msg.friction_law + "': must be one of paper, linearized, coulomb, table";
+      error = "friction_law = '" + msg.friction_law + "': must be one of " + top_sim::friction_law_names(", ");
       return c;
     }
-    law.mu_c = msg.mu_c;
-    law.s_c = msg.s_c;
-    law.mu0 = msg.mu0;
-    law.k = msg.k;
-    law.s0 = msg.s0;
-    law.mu = msg.mu;
-    if (law.kind == top_sim::FrictionLawKind::table) {
+#define TOP_SIM_COPY_FROM_MSG(kind, name, range) law.name = msg.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_MSG)
+#undef TOP_SIM_COPY_FROM_MSG
+    if (law.kind == top_sim::kFrictionPointsLaw) {
       if (msg.table_s.size() != msg.table_mu.size()) {
         std::ostringstream os;
         os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()

@@ -33,12 +33,17 @@
 
 namespace {
 
-// Parameters of the node itself and of dynamic_reconfigure: everything else under ~ is the scene.
-const std::set<std::string> kNodeKeys = {
-    "publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame", "top_frame",
-    "path_length",  "lcm_url",          "lcm_channel",   "marker_rate", "path_rate",   "path_resolution",
-    "config_dir",   "scene_file",       "alpha",         "spin",        "friction_law", "mu_c",
-    "s_c",          "mu0",              "k",             "s0",          "mu"};
+// Parameters of the node itself and of dynamic_reconfigure (with the friction laws' parameters): everything else
+// under ~ is the scene.
+std::set<std::string> node_keys() {
+  std::set<std::string> keys = {"publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame",
+                                "top_frame",    "path_length",      "lcm_url",       "lcm_channel", "marker_rate",
+                                "path_rate",    "path_resolution",  "config_dir",    "scene_file",  "alpha",
+                                "spin",         "friction_law"};
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) keys.insert(p.name);
+  return keys;
+}
+const std::set<std::string> kNodeKeys = node_keys();
 
 constexpr double kMaxPublishRate = 10000.0;
 
@@ -453,14 +458,18 @@ class TopSimNode {
     return true;
   }
 
+  // dynamic_reconfigure's friction fields are named like the core's parameters.
   static void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& cfg) {
     cfg.friction_law = top_sim::to_string(law.kind);
-    cfg.mu_c = law.mu_c;
-    cfg.s_c = law.s_c;
-    cfg.mu0 = law.mu0;
-    cfg.k = law.k;
-    cfg.s0 = law.s0;
-    cfg.mu = law.mu;
+#define TOP_SIM_COPY_TO_CONFIG(kind, name, range) cfg.name = law.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_TO_CONFIG)
+#undef TOP_SIM_COPY_TO_CONFIG
+  }
+
+  static void friction_from_config(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+#define TOP_SIM_COPY_FROM_CONFIG(kind, name, range) law.name = cfg.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_CONFIG)
+#undef TOP_SIM_COPY_FROM_CONFIG
   }
 
   void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level) {
@@ -476,24 +485,19 @@ class TopSimNode {
       top_sim::FrictionLaw law = sim_->model().friction;
       top_sim::FrictionLawKind kind;
       if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
-        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be paper, linearized, coulomb or table",
-                 cfg.friction_law.c_str());
+        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be one of %s", cfg.friction_law.c_str(),
+                 top_sim::friction_law_names(", ").c_str());
         cfg = config_;
         return;
       }
-      if (kind == top_sim::FrictionLawKind::table && law.kind != kind) {
+      if (kind == top_sim::kFrictionPointsLaw && law.kind != kind) {
         ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene "
                  "or a TopCommand; kept the %s law", top_sim::to_string(law.kind));
         cfg = config_;
         return;
       }
       law.kind = kind;
-      law.mu_c = cfg.mu_c;
-      law.s_c = cfg.s_c;
-      law.mu0 = cfg.mu0;
-      law.k = cfg.k;
-      law.s0 = cfg.s0;
-      law.mu = cfg.mu;
+      friction_from_config(cfg, law);
       c.friction = law;
     }
     if (!c.empty()) {

@@ -79,6 +79,25 @@ TEST(TopCommand, FrictionLawByName) {
   EXPECT_NE(error.find("friction_law = 'viscous'"), std::string::npos) << error;
 }
 
+// Every scalar parameter of the core's table reaches the law (the message's fields carry the parameters' names).
+TEST(TopCommand, EveryFrictionParameterIsCarried) {
+  top_sim::TopCommand m;
+  m.set_friction = true;
+  m.friction_law = "linearized";
+  double value = 0.0;
+#define TOP_SIM_SET_FIELD(kind, name, range) m.name = (value += 0.125);
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_SET_FIELD)
+#undef TOP_SIM_SET_FIELD
+  std::string error;
+  const top_sim::Command c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.friction);
+  value = 0.0;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
+    EXPECT_EQ((*c.friction).*p.member, value += 0.125) << p.name;
+  EXPECT_EQ(c.friction->mu0, 0.375);  // the table's third parameter, by name
+}
+
 TEST(TopCommand, EmptyCommandIsReported) {
   std::string error;
   to_command(top_sim::TopCommand(), error);
