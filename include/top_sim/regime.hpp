@@ -6,6 +6,7 @@
 #include "top_sim/dynamics.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"
+#include "top_sim/stationary.hpp"
 
 namespace top_sim {
 
@@ -24,7 +25,9 @@ struct RegimeIndicators {
   bool runaway = false;         // no stationary state, or slip beyond the unstable root
 };
 
-RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn);
+// `dyn` is the dynamics of y and `stationary` the sleeping state at y's shell spin (each computed once by the caller).
+RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
+                                   const StationaryState& stationary);
 
 // `previous` adds hysteresis: a sleeping top stays asleep until its path turns at twice the threshold,
 // so the regime does not flicker while the last precession dies out.

@@ -22,6 +22,16 @@
 
 namespace top_sim {
 
+// What one sample derives from a state, each once: the dynamics in the contact mode, the sleeping state at the
+// state's shell spin, and the regime indicators (zero for the adiabatic model) that the classification reads.
+struct SampleAnalysis {
+  Dynamics dynamics;
+  StationaryState stationary;
+  RegimeIndicators indicators;
+};
+
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y);
+
 class Simulator {
  public:
   explicit Simulator(const Scene& scene);
@@ -44,12 +54,14 @@ class Simulator {
   const StateVector& state() const { return y_; }
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
+  // Every derived quantity of the current state, from the sample made at the end of the last advance or reset
+  // (no dynamics evaluation, no classification here).
   Snapshot snapshot() const;
   const StepperStats& stats() const { return stepper_->stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
-  // The analytic sleeping state for the current alpha and shell spin.
-  StationaryState stationary() const;
+  // The analytic sleeping state for the current alpha and shell spin (solved once per sample).
+  const StationaryState& stationary() const { return sample_.stationary; }
   double max_energy_residual() const { return max_residual_; }
 
   ContactMode contact_mode() const { return mode_; }
@@ -74,7 +86,7 @@ class Simulator {
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
-  void update_regime();
+  void update_sample();
   bool in_stiff_layer(const StateVector& y, bool inside) const;
 
   Scene scene_;
@@ -91,6 +103,7 @@ class Simulator {
   ContactFault fault_ = ContactFault::none;
   std::string fault_message_;
   Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
+  SampleAnalysis sample_;             // of the state at the end of the last advance or reset
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_
@@ -108,9 +121,8 @@ class Simulator {
   double last_switch_t_ = -1.0;
 };
 
-// Snapshot of an arbitrary state of a model (used by the Simulator and by tools).
+// Snapshot of a state of a model from its analysis and its regime (classified by the caller, with hysteresis).
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary, Regime previous = Regime::nutating,
-                       ContactMode mode = ContactMode::slipping);
+                       const SampleAnalysis& analysis, Regime regime, ContactMode mode = ContactMode::slipping);
 
 }  // namespace top_sim
