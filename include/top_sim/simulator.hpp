@@ -1,7 +1,9 @@
 // Owns time, the steppers, the contact mode, scripted events and pending commands; advances one top.
 //
 // Threading contract: one thread owns a Simulator and calls everything but submit(); submit() may be called from
-// any thread (commands enter through one locked queue and are applied at the next step boundary).
+// any thread: commands enter through one locked queue and are applied at the next step boundary. submit()
+// validates against the model in force, which the owning thread changes (reset, applying commands) only under
+// that queue's lock; the owner's own reads need no lock. Not copyable: the steppers call back into the object.
 #pragma once
 
 #include <array>
@@ -44,7 +46,8 @@ class Simulator {
   // stopped short of t (time() < t, no fault), true otherwise. The state is always a consistent step boundary.
   bool advance_to(double t, double budget_seconds = std::numeric_limits<double>::infinity());
 
-  // Validates and queues a command for the next step boundary; returns "" or the error message.
+  // Validates and queues a command for the next step boundary; returns "" or the error message. Any thread.
+  // The command is checked against the model in force now, not against the effect of commands still queued.
   std::string submit(const Command& command);
 
   // Back to the scene's initial state; time keeps running forward (scripted events restart).
@@ -52,6 +55,7 @@ class Simulator {
 
   double time() const { return t_; }
   const StateVector& state() const { return y_; }
+  // The model in force: the scene's, as changed by the commands applied since the last reset.
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
   // Every derived quantity of the current state, from the sample made at the end of the last advance or reset
@@ -97,7 +101,7 @@ class Simulator {
   double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it
   std::size_t next_event_ = 0;
   std::vector<Command> pending_;
-  mutable std::mutex pending_mutex_;
+  mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
   EnergyBalance balance_;
   double max_residual_ = 0.0;
   ContactFault fault_ = ContactFault::none;

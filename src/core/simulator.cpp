@@ -95,8 +95,8 @@ void Simulator::reset() {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     pending_.clear();
+    model_ = scene_.model;
   }
-  model_ = scene_.model;
   y_ = initial_state(scene_);
   t_origin_ = t_;
   next_event_ = 0;
@@ -147,13 +147,14 @@ void Simulator::fail(ContactFault fault, const std::string& message) {
 }
 
 std::string Simulator::submit(const Command& command) {
+  std::lock_guard<std::mutex> lock(pending_mutex_);  // the owner writes model_ only under it
   const std::string error = validate(command, model_);
   if (!error.empty()) return error;
-  std::lock_guard<std::mutex> lock(pending_mutex_);
   pending_.push_back(command);
   return "";
 }
 
+// Called with pending_mutex_ held: it changes model_, which submit() reads from other threads.
 void Simulator::apply_now(const Command& c) {
   const Eigen::Vector3d f_hat = figure_axis(y_).normalized();
   const double spin = shell_spin(y_);
@@ -188,15 +189,15 @@ void Simulator::reclose_contact() {
 }
 
 void Simulator::apply_pending() {
-  std::vector<Command> due;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::vector<Command> due;
     due.swap(pending_);
+    while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
+      due.push_back(scene_.events[next_event_++].command);
+    if (due.empty()) return;
+    for (const Command& c : due) apply_now(c);
   }
-  while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
-    due.push_back(scene_.events[next_event_++].command);
-  if (due.empty()) return;
-  for (const Command& c : due) apply_now(c);
   reclose_contact();
   restart_stepper(true);
 }
