@@ -51,6 +51,48 @@ double arrow_length(double value, double reference, double max_len) {
   return max_len * a / (a + reference);
 }
 
+struct Colour {
+  float r, g, b;
+};
+
+// Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
+Colour mode_colour(top_sim::ContactMode mode) {
+  if (mode == top_sim::ContactMode::rolling) return {0.3f, 0.8f, 0.35f};
+  if (mode == top_sim::ContactMode::flight) return {0.35f, 0.55f, 0.95f};
+  return {0.7f, 0.7f, 0.75f};
+}
+
+// Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
+visualization_msgs::Marker plane_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
+  visualization_msgs::Marker plane = marker(frame, stamp, "plane", visualization_msgs::Marker::CUBE, 0.75f, 0.78f, 0.85f);
+  const double cell = 0.25;
+  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
+  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
+  plane.pose.position.z = -0.0005;
+  plane.scale.x = plane.scale.y = 4 * cell;
+  plane.scale.z = 0.001;
+  plane.color.a = 0.6f;
+  return plane;
+}
+
+// Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule); velocity arrow at the contact.
+void add_arrows(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp,
+                visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  Marker spin = marker(frame, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
+  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
+  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
+  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
+  out.markers.push_back(spin);
+
+  Marker vel = marker(frame, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
+  const double v = s.tip_velocity.norm();
+  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
+  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
+  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
+  out.markers.push_back(vel);
+}
+
 }  // namespace
 
 bool all_finite(const top_sim::Snapshot& s) {
@@ -131,30 +173,15 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   const double body_r = std::sqrt(2.0 * top.inertia_axial / top.mass);
   const double body_h = std::max(0.25 * body_r, 2.0 * R);
 
-  // Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
-  Marker plane = marker(frames.plane, stamp, "plane", Marker::CUBE, 0.75f, 0.78f, 0.85f);
-  const double cell = 0.25;
-  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
-  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
-  plane.pose.position.z = -0.0005;
-  plane.scale.x = plane.scale.y = 4 * cell;
-  plane.scale.z = 0.001;
-  plane.color.a = 0.6f;
-  out.markers.push_back(plane);
+  out.markers.push_back(plane_marker(s, frames.plane, stamp));
 
   Marker tip = marker(frames.plane, stamp, "tip", Marker::SPHERE, 0.9f, 0.2f, 0.2f);
   tip.pose.position = point(s.tip_center);
   tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * R;
   out.markers.push_back(tip);
 
-  // Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
-  float br = 0.7f, bg = 0.7f, bb = 0.75f;
-  if (s.contact_mode == top_sim::ContactMode::rolling) {
-    br = 0.3f; bg = 0.8f; bb = 0.35f;
-  } else if (s.contact_mode == top_sim::ContactMode::flight) {
-    br = 0.35f; bg = 0.55f; bb = 0.95f;
-  }
-  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, br, bg, bb);
+  const Colour colour = mode_colour(s.contact_mode);
+  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, colour.r, colour.g, colour.b);
   body.scale.x = body.scale.y = 2.0 * body_r;
   body.scale.z = body_h;
   out.markers.push_back(body);
@@ -167,22 +194,10 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   stem.scale.z = z1 - z0;
   out.markers.push_back(stem);
 
-  // Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule).
-  Marker spin = marker(frames.plane, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
-  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
-  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
-  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
-  out.markers.push_back(spin);
-
-  Marker vel = marker(frames.plane, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
-  const double v = s.tip_velocity.norm();
-  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
-  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
-  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
-  out.markers.push_back(vel);
+  add_arrows(s, frames.plane, stamp, out);
 
   // The contact mode as text above the top ("slipping", "rolling", "flight"), in the body's colour.
-  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, br, bg, bb);
+  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, colour.r, colour.g, colour.b);
   mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, 0.5 * f + body_h + 0.02));
   mode.scale.z = 0.01;  // text height [m]
   mode.text = top_sim::to_string(s.contact_mode);
