@@ -2,7 +2,7 @@
 """Reports every C++ function whose body is longer than 60 lines (issue: "no function over 60 lines without a
 reason in its comment").
 
-usage: check_function_length.py [--max N] [PATH...]   (default: src/**/*.cpp and include/**/*.hpp of the repository)
+usage: check_function_length.py [--max N] [PATH...]   (default: src/**/*.{cpp,hpp} and include/**/*.hpp of the repository)
 
 A body's length is counted from the line of its opening brace to the line of its closing brace, both included.
 A long function is excused when the line just before its signature, or any line of the comment block right above
@@ -181,17 +181,17 @@ def check_file(path, max_lines):
 
 def default_paths(root):
     paths = []
-    for folder, suffix in (("src", ".cpp"), ("include", ".hpp")):
+    for folder, suffixes in (("src", (".cpp", ".hpp")), ("include", (".hpp",))):
         for dirpath, dirnames, filenames in os.walk(os.path.join(root, folder)):
             dirnames.sort()
-            paths += [os.path.join(dirpath, f) for f in sorted(filenames) if f.endswith(suffix)]
+            paths += [os.path.join(dirpath, f) for f in sorted(filenames) if f.endswith(suffixes)]
     return paths
 
 
 def main(argv):
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--max", type=int, default=MAX_LINES, help="longest body allowed [lines] (default 60)")
-    parser.add_argument("paths", nargs="*", help="files to check (default: src/**/*.cpp, include/**/*.hpp)")
+    parser.add_argument("paths", nargs="*", help="files to check (default: src/**/*.{cpp,hpp}, include/**/*.hpp)")
     args = parser.parse_args(argv)
     if args.max < 1:
         parser.error("--max must be >= 1")
