@@ -39,13 +39,13 @@ struct ParameterRange {
 // FrictionLaw member, the scene key under `friction:`, and the field of the TopCommand message and of the
 // dynamic_reconfigure config, so adapters copy fields with this list; the core iterates kFrictionParameters below.
 // Adding a law or a parameter: a FrictionLaw member, a row here, its formulas in friction.cpp and stationary.cpp.
-#define TOP_SIM_FRICTION_PARAMETERS(X)                                                                          \
-  X(paper, mu_c, ::top_sim::ParameterRange::above(0.0))                                                        \
-  X(paper, s_c, ::top_sim::ParameterRange::between(0.0, true, 1.0, false))                                     \
-  X(linearized, mu0, ::top_sim::ParameterRange::any())                                                         \
-  X(linearized, k, ::top_sim::ParameterRange::any())                                                           \
-  X(linearized, s0, ::top_sim::ParameterRange::between(0.0, false, 1.0, false))                                \
-  X(coulomb, mu, ::top_sim::ParameterRange::at_least(0.0))
+#define TOP_SIM_FRICTION_PARAMETERS(X)                                                        \
+  X(paper, mu_c, ::top_sim::ParameterRange::above(0.0))                      /* > 0 */       \
+  X(paper, s_c, ::top_sim::ParameterRange::between(0.0, true, 1.0, false))   /* (0, 1] */    \
+  X(linearized, mu0, ::top_sim::ParameterRange::any())                       /* finite */    \
+  X(linearized, k, ::top_sim::ParameterRange::any())                         /* finite */    \
+  X(linearized, s0, ::top_sim::ParameterRange::between(0.0, false, 1.0, false)) /* [0, 1] */ \
+  X(coulomb, mu, ::top_sim::ParameterRange::at_least(0.0))                   /* >= 0 */
 
 // The table law's one parameter that is not a number: its (s, mu) points.
 inline constexpr const char* kFrictionPointsKey = "points";
