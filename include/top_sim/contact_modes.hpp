@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <limits>
 
 #include "top_sim/model.hpp"
@@ -10,9 +11,12 @@
 
 namespace top_sim {
 
-enum class ContactMode { slipping, rolling, flight };
+// The values are the contact-mode codes of the messages (TopState.msg, top_state_t.lcm) and the indexes of
+// per-mode arrays; the message adapters assert them.
+enum class ContactMode { slipping = 0, rolling = 1, flight = 2 };
 constexpr int kContactModeCount = 3;
 
+constexpr std::uint8_t code(ContactMode m) { return static_cast<std::uint8_t>(m); }
 const char* to_string(ContactMode mode);
 
 enum class ModeSwitchKind { lift_off, touchdown, stick, slip };

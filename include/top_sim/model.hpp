@@ -1,4 +1,6 @@
-// The immutable description of one simulated system (physics.md section 1): top, plane, friction, options.
+// The description of one simulated system (physics.md section 1): top, plane, friction, options. A step never
+// changes it; a Simulator's copy changes only by Commands between steps (plane, friction law, static friction,
+// restitution, rotor coupling), and a Scene's copy never.
 #pragma once
 
 #include <Eigen/Core>
@@ -7,6 +9,7 @@
 #include <optional>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/plane.hpp"
 
 namespace top_sim {
 
@@ -28,21 +31,6 @@ struct Top {
   Rotor rotor;
 };
 
-// The inclined plane; gravity in the plane frame is cached because every right-hand side needs it.
-struct Plane {
-  double inclination = 0.1;  // alpha [rad]
-  double gravity = 9.81;     // g [m/s^2]
-  Eigen::Vector3d g_plane = Eigen::Vector3d(0.0, -9.81 * std::sin(0.1), -9.81 * std::cos(0.1));
-};
-
-inline Plane make_plane(double inclination, double gravity) {
-  Plane p;
-  p.inclination = inclination;
-  p.gravity = gravity;
-  p.g_plane = Eigen::Vector3d(0.0, -gravity * std::sin(inclination), -gravity * std::cos(inclination));
-  return p;
-}
-
 enum class NormalForceModel { constrained, static_approximation };
 enum class ModelKind { full, adiabatic };
 
@@ -62,15 +50,16 @@ struct ContactSettings {
   double settle_speed = 1.0e-5;           // v_settle [m/s]
 };
 
+// The parts that Commands change (Simulator::apply_now) are marked "command".
 struct Model {
-  Top top;
-  Plane plane;
-  FrictionLaw friction;
+  Top top;                               // command: rotor.coupling
+  Plane plane;                           // command: inclination (make_plane)
+  FrictionLaw friction;                  // command: the whole law
   double regularization_speed = 1.0e-9;  // v_eps [m/s]
   NormalForceModel normal_force = NormalForceModel::constrained;
   ModelKind kind = ModelKind::full;
   RegimeThresholds regime;
-  ContactSettings contact;
+  ContactSettings contact;               // command: static_friction, restitution
 };
 
 // mu_s in force: the given value, else mu(0) of the law; 0 where the paper's permanent slipping contact holds.

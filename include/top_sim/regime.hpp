@@ -1,14 +1,19 @@
 // Regime classification published with the state (physics.md section 8).
 #pragma once
 
+#include <cstdint>
+
 #include "top_sim/dynamics.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"
+#include "top_sim/stationary.hpp"
 
 namespace top_sim {
 
-enum class Regime { nutating, precessing, sleeping, sliding, contact_fault };
+// The values are the regime codes of the messages (TopState.msg, top_state_t.lcm), whose adapters assert them.
+enum class Regime { nutating = 0, precessing = 1, sleeping = 2, sliding = 3, contact_fault = 4 };
 
+constexpr std::uint8_t code(Regime r) { return static_cast<std::uint8_t>(r); }
 const char* to_string(Regime r);
 
 // The quantities the classification reads.
@@ -20,7 +25,9 @@ struct RegimeIndicators {
   bool runaway = false;         // no stationary state, or slip beyond the unstable root
 };
 
-RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn);
+// `dyn` is the dynamics of y and `stationary` the sleeping state at y's shell spin (each computed once by the caller).
+RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
+                                   const StationaryState& stationary);
 
 // `previous` adds hysteresis: a sleeping top stays asleep until its path turns at twice the threshold,
 // so the regime does not flicker while the last precession dies out.

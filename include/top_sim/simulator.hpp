@@ -1,7 +1,9 @@
 // Owns time, the steppers, the contact mode, scripted events and pending commands; advances one top.
 //
 // Threading contract: one thread owns a Simulator and calls everything but submit(); submit() may be called from
-// any thread (commands enter through one locked queue and are applied at the next step boundary).
+// any thread: commands enter through one locked queue and are applied at the next step boundary. submit()
+// validates against the model in force, which the owning thread changes (reset, applying commands) only under
+// that queue's lock; the owner's own reads need no lock. Not copyable: the steppers call back into the object.
 #pragma once
 
 #include <array>
@@ -22,6 +24,16 @@
 
 namespace top_sim {
 
+// What one sample derives from a state, each once: the dynamics in the contact mode, the sleeping state at the
+// state's shell spin, and the regime indicators (zero for the adiabatic model) that the classification reads.
+struct SampleAnalysis {
+  Dynamics dynamics;
+  StationaryState stationary;
+  RegimeIndicators indicators;
+};
+
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y);
+
 class Simulator {
  public:
   explicit Simulator(const Scene& scene);
@@ -34,7 +46,8 @@ class Simulator {
   // stopped short of t (time() < t, no fault), true otherwise. The state is always a consistent step boundary.
   bool advance_to(double t, double budget_seconds = std::numeric_limits<double>::infinity());
 
-  // Validates and queues a command for the next step boundary; returns "" or the error message.
+  // Validates and queues a command for the next step boundary; returns "" or the error message. Any thread.
+  // The command is checked against the model in force now, not against the effect of commands still queued.
   std::string submit(const Command& command);
 
   // Back to the scene's initial state; time keeps running forward (scripted events restart).
@@ -42,14 +55,17 @@ class Simulator {
 
   double time() const { return t_; }
   const StateVector& state() const { return y_; }
+  // The model in force: the scene's, as changed by the commands applied since the last reset.
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
+  // Every derived quantity of the current state, from the sample made at the end of the last advance or reset
+  // (no dynamics evaluation, no classification here).
   Snapshot snapshot() const;
   const StepperStats& stats() const { return stepper_->stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
-  // The analytic sleeping state for the current alpha and shell spin.
-  StationaryState stationary() const;
+  // The analytic sleeping state for the current alpha and shell spin (solved once per sample).
+  const StationaryState& stationary() const { return sample_.stationary; }
   double max_energy_residual() const { return max_residual_; }
 
   ContactMode contact_mode() const { return mode_; }
@@ -74,7 +90,7 @@ class Simulator {
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
-  void update_regime();
+  void update_sample();
   bool in_stiff_layer(const StateVector& y, bool inside) const;
 
   Scene scene_;
@@ -85,12 +101,13 @@ class Simulator {
   double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it
   std::size_t next_event_ = 0;
   std::vector<Command> pending_;
-  mutable std::mutex pending_mutex_;
+  mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
   EnergyBalance balance_;
   double max_residual_ = 0.0;
   ContactFault fault_ = ContactFault::none;
   std::string fault_message_;
   Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
+  SampleAnalysis sample_;             // of the state at the end of the last advance or reset
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_
@@ -108,9 +125,8 @@ class Simulator {
   double last_switch_t_ = -1.0;
 };
 
-// Snapshot of an arbitrary state of a model (used by the Simulator and by tools).
+// Snapshot of a state of a model from its analysis and its regime (classified by the caller, with hysteresis).
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary, Regime previous = Regime::nutating,
-                       ContactMode mode = ContactMode::slipping);
+                       const SampleAnalysis& analysis, Regime regime, ContactMode mode = ContactMode::slipping);
 
 }  // namespace top_sim

@@ -8,6 +8,8 @@
 
 #include "top_sim/trajectory.hpp"
 
+#include "top_sim/plane.hpp"
+
 namespace top_sim {
 
 namespace {
@@ -40,8 +42,6 @@ double thread_cpu_seconds() {
   clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
-
-double travel_angle(double dx, double dy) { return std::atan2(-dy, dx); }
 
 RunResult run(Simulator& sim, const RunOptions& opt) {
   RunResult r;

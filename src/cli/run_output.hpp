@@ -39,9 +39,6 @@ RunResult run(Simulator& sim, const RunOptions& options);
 // CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
 double thread_cpu_seconds();
 
-// Angle from h towards downhill of a displacement (dx, dy) in the plane frame, in [-pi, pi].
-double travel_angle(double dx, double dy);
-
 void write_csv_header(std::ostream& os);
 void write_csv_row(std::ostream& os, const Snapshot& s);
 

@@ -10,6 +10,7 @@
 #include <limits>
 #include <sstream>
 
+#include "top_sim/plane.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {
@@ -65,9 +66,8 @@ Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
     // Start inside the sleeping state's basin: slip near s*, not s = 1 (which runs away close to alpha_c).
     const StationaryState st = stationary_state(scene.model, p.spin);
     if (st.exists) {
-      // The initial keys are world-frame: f_hat* from the plane frame P to W (R_WP = Rot_x(alpha)).
-      const double ca = std::cos(p.alpha), sa = std::sin(p.alpha);
-      const Eigen::Vector3d f_w(st.f_hat.x(), ca * st.f_hat.y() - sa * st.f_hat.z(), sa * st.f_hat.y() + ca * st.f_hat.z());
+      // The initial keys are world-frame.
+      const Eigen::Vector3d f_w = plane_to_world(p.alpha, st.f_hat);
       scene.initial.tilt = std::acos(std::clamp(f_w.z(), -1.0, 1.0)) + settings.launch_perturbation;
       scene.initial.tilt_azimuth = std::atan2(f_w.y(), f_w.x());
       scene.initial.velocity = st.velocity;
@@ -76,55 +76,62 @@ Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
   return scene;
 }
 
-SweepResult run_sweep_point(const SweepPoint& p, const SweepSettings& settings) {
-  SweepResult res;
-  res.point = p;
-  const Scene scene = make_sweep_scene(p, settings);
-  const FrictionLaw& law = scene.model.friction;
+namespace {
+
+// The analytic columns: the paper law's parameters, the stable and unstable roots of mu(s) = tan(alpha).
+void fill_analytic(const FrictionLaw& law, double alpha, SweepResult& res) {
   const bool paper = law.kind == FrictionLawKind::paper;
   res.mu_c = paper ? law.mu_c : std::numeric_limits<double>::quiet_NaN();
   res.s_c = paper ? law.s_c : std::numeric_limits<double>::quiet_NaN();
-  res.tan_alpha = std::tan(p.alpha);
+  res.tan_alpha = std::tan(alpha);
   for (const SlipRoot& root : slip_roots(law, res.tan_alpha)) {
     if (root.stable && res.s_stable < 0.0) res.s_stable = root.s;
     else if (!root.stable && res.s_stable >= 0.0 && res.s_unstable < 0.0) res.s_unstable = root.s;
   }
+}
 
-  const double cpu0 = thread_cpu_seconds();
-  Simulator sim(scene);
-  const StationaryState st = sim.stationary();
-  if (st.exists && st.phi_defined) res.phi_star = st.phi;
+struct RunBudget {
+  double t_max = 0.0;   // give up after this simulated time [s]
+  double window = 1.0;  // phi is measured once per window [s]
+};
 
-  // The relaxation is a path length: budget time as path / sleeping speed, windows likewise.
-  double t_max = settings.slide_duration, window = 1.0;
+// The relaxation is a path length: budget time as path / sleeping speed, windows likewise.
+RunBudget run_budget(const StationaryState& st, const SweepSettings& settings) {
+  RunBudget b;
+  b.t_max = settings.slide_duration;
   if (st.exists) {
     const double v = std::hypot(st.rolling_speed, st.sliding_speed);
-    t_max = v > 0.0 ? std::clamp(settings.max_path / v, settings.min_duration, settings.max_duration)
-                    : settings.min_duration;
-    window = v > 0.0 ? std::clamp(settings.window_path / v, 1.0, t_max / 10.0) : t_max / 10.0;
+    b.t_max = v > 0.0 ? std::clamp(settings.max_path / v, settings.min_duration, settings.max_duration)
+                      : settings.min_duration;
+    b.window = v > 0.0 ? std::clamp(settings.window_path / v, 1.0, b.t_max / 10.0) : b.t_max / 10.0;
   }
+  return b;
+}
 
+// Runs window by window until the top sleeps with a settled phi, has slid for slide_duration, faults, or the budget
+// ends; sets outcome (empty when unconverged), regime, phi and note.
+void relax(Simulator& sim, const SweepSettings& settings, const RunBudget& budget, SweepResult& res) {
   std::optional<double> previous_phi;
   int quiet_windows = 0;
   constexpr int kQuietWindows = 3;
   double sliding_since = -1.0;
-  while (sim.time() < t_max - 1e-9) {
+  while (sim.time() < budget.t_max - 1e-9) {
     const double t_start = sim.time();
     RunOptions opt;
-    opt.duration = std::min(window, t_max - t_start);
+    opt.duration = std::min(budget.window, budget.t_max - t_start);
     const RunResult r = run(sim, opt);
     res.regime = r.final.regime;
     if (r.phi_measured) res.phi = r.phi_measured;
     if (r.final.fault != ContactFault::none) {
       res.outcome = "contact_fault";
       res.note = r.final.fault_message;
-      break;
+      return;
     }
     if (res.regime == Regime::sliding) {
       if (sliding_since < 0.0) sliding_since = t_start;
       if (sim.time() - sliding_since >= settings.slide_duration - 1e-9) {
         res.outcome = "sliding";
-        break;
+        return;
       }
     } else {
       sliding_since = -1.0;
@@ -137,10 +144,25 @@ SweepResult run_sweep_point(const SweepPoint& p, const SweepSettings& settings) 
     quiet_windows = sleeping && change < settings.phi_tolerance ? quiet_windows + 1 : 0;
     if (quiet_windows >= kQuietWindows) {
       res.outcome = "sleeping";
-      break;
+      return;
     }
     previous_phi = r.phi_measured;
   }
+}
+
+}  // namespace
+
+SweepResult run_sweep_point(const SweepPoint& p, const SweepSettings& settings) {
+  SweepResult res;
+  res.point = p;
+  const Scene scene = make_sweep_scene(p, settings);
+  fill_analytic(scene.model.friction, p.alpha, res);
+
+  const double cpu0 = thread_cpu_seconds();
+  Simulator sim(scene);
+  const StationaryState st = sim.stationary();
+  if (st.exists && st.phi_defined) res.phi_star = st.phi;
+  relax(sim, settings, run_budget(st, settings), res);
   if (res.outcome.empty()) res.outcome = res.regime == Regime::sliding ? "sliding" : "unconverged";
   if (res.phi) {
     // Negative spin mirrors the path to pi - phi: report the half-angle comparable to s*.

@@ -40,138 +40,175 @@ double positive_number(const std::string& flag, const char* text) {
   return v;
 }
 
+struct Arguments {
+  std::string scene_path, csv_path, summary_path, lcm_url, lcm_channel = "TOP_STATE";
+  double duration = -1.0;  // < 0: the scene's
+  double rate = 100.0;     // samples per simulated second
+};
+
+// Reads the command line (throws BadArgument); false when it asked for --help.
+bool parse_arguments(int argc, char** argv, Arguments& args) {
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> const char* {
+      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") {
+      return false;
+    } else if (a == "--duration") {
+      args.duration = positive_number(a, value());
+    } else if (a == "--rate") {
+      args.rate = positive_number(a, value());
+    } else if (a == "--csv") {
+      args.csv_path = value();
+    } else if (a == "--summary") {
+      args.summary_path = value();
+    } else if (a == "--lcm") {
+      args.lcm_url = value();
+      if (args.lcm_url.empty()) throw BadArgument{"--lcm = '': must be an LCM URL such as udpm://239.255.76.67:7667?ttl=0"};
+    } else if (a == "--lcm-channel") {
+      args.lcm_channel = value();
+      if (args.lcm_channel.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
+    } else if (!a.empty() && a[0] == '-') {
+      throw BadArgument{"unknown option '" + a + "'"};
+    } else if (args.scene_path.empty()) {
+      args.scene_path = a;
+    } else {
+      throw BadArgument{"more than one scene file ('" + args.scene_path + "', '" + a + "')"};
+    }
+  }
+  if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
+#ifndef TOP_SIM_HAVE_LCM
+  if (!args.lcm_url.empty()) throw BadArgument{"--lcm: this build has no LCM support (liblcm-dev and lcm-gen were not found)"};
+#endif
+  return true;
+}
+
+#ifdef TOP_SIM_HAVE_LCM
+// Real time (factor 1), paced by top_sim::Pacer like top_sim_node: each sample waits for its wall-clock instant, then
+// goes out on LCM with the achieved factor of the last wall second (and to the CSV when one is written). A sample
+// more than 0.5 s late re-anchors the clock (the debt is dropped) instead of rushing the backlog out.
+void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, double rate, double t0,
+                     top_sim::RunOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  const clock::time_point wall0 = clock::now();
+  auto wall_now = [wall0] { return std::chrono::duration<double>(clock::now() - wall0).count(); };
+  auto pacer = std::make_shared<top_sim::Pacer>(1.0, rate, 0.0, t0);
+  auto write_csv = opt.on_sample;
+  opt.sample_rate = rate;
+  opt.on_sample = [&lcm, channel, write_csv, wall0, wall_now, pacer](const top_sim::Snapshot& s) {
+    const double at = pacer->due(wall_now(), s.t);
+    std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(
+                                              std::chrono::duration<double>(at)));
+    const bool was_behind = pacer->behind();
+    pacer->record(wall_now(), s.t);
+    if (pacer->behind() != was_behind) {
+      if (pacer->behind())
+        std::cerr << "top_sim_run: falling behind: achieved " << pacer->achieved_factor()
+                  << " of requested 1 at t = " << s.t << " s\n";
+      else
+        std::cerr << "top_sim_run: caught up at t = " << s.t << " s\n";
+    }
+    static bool warned = false;  // one message, not one per sample
+    if (!lcm.publish(s, pacer->achieved_factor()) && !warned && (warned = true))
+      std::cerr << "top_sim_run: LCM publish on " << channel << " failed at t = " << s.t << " s\n";
+    if (write_csv) write_csv(s);
+  };
+}
+#endif
+
+// The scene, its warnings on stderr; false (after the message) when it is bad.
+bool load(const std::string& path, top_sim::Scene& scene) {
+  try {
+    scene = top_sim::load_scene(path);
+  } catch (const top_sim::SceneError& e) {
+    std::cerr << "top_sim_run: bad scene: " << e.what() << "\n";
+    return false;
+  }
+  for (const auto& w : scene.warnings) std::cerr << "top_sim_run: warning: " << w << "\n";
+  return true;
+}
+
+// The CSV with its header when a path is given; false (after the message) when it cannot be written.
+bool open_csv(const std::string& path, std::ofstream& csv) {
+  if (path.empty()) return true;
+  csv.open(path);
+  if (!csv) {
+    std::cerr << "top_sim_run: --csv = '" << path << "': cannot open for writing\n";
+    return false;
+  }
+  top_sim::write_csv_header(csv);
+  return true;
+}
+
+// The one-line result on stdout (unless the summary goes there).
+void print_result(const top_sim::Scene& scene, const top_sim::RunResult& r) {
+  std::cout << scene.source << ": " << r.sim_seconds << " s simulated in " << r.cpu_seconds << " s CPU ("
+            << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " right-hand sides), regime "
+            << top_sim::to_string(r.final.regime);
+  if (r.phi_measured) std::cout << ", phi_measured " << *r.phi_measured;
+  if (r.phi_star) std::cout << ", phi_star " << *r.phi_star;
+  if (r.phi_measured && r.phi_star) std::cout << " (difference " << std::abs(*r.phi_measured - *r.phi_star) << ")";
+  std::cout << ", energy residual " << r.max_energy_residual << "\n";
+  if (!r.stationary_note.empty()) std::cout << "  stationary state: " << r.stationary_note << "\n";
+}
+
+// The JSON summary to `path` ("-" = stdout, "" = none); false when the file cannot be written.
+bool write_summary(const std::string& path, const std::string& json) {
+  if (path == "-") {
+    std::cout << json;
+  } else if (!path.empty()) {
+    std::ofstream out(path);
+    if (!out) {
+      std::cerr << "top_sim_run: --summary = '" << path << "': cannot open for writing\n";
+      return false;
+    }
+    out << json;
+  }
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   using namespace top_sim;
-  std::string scene_path, csv_path, summary_path, lcm_url, lcm_channel = "TOP_STATE";
-  double duration = -1.0, rate = 100.0;
+  Arguments args;
   try {
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> const char* {
-        if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
-        return argv[++i];
-      };
-      if (a == "-h" || a == "--help") {
-        std::cout << kUsage;
-        return 0;
-      } else if (a == "--duration") {
-        duration = positive_number(a, value());
-      } else if (a == "--rate") {
-        rate = positive_number(a, value());
-      } else if (a == "--csv") {
-        csv_path = value();
-      } else if (a == "--summary") {
-        summary_path = value();
-      } else if (a == "--lcm") {
-        lcm_url = value();
-        if (lcm_url.empty()) throw BadArgument{"--lcm = '': must be an LCM URL such as udpm://239.255.76.67:7667?ttl=0"};
-      } else if (a == "--lcm-channel") {
-        lcm_channel = value();
-        if (lcm_channel.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
-      } else if (!a.empty() && a[0] == '-') {
-        throw BadArgument{"unknown option '" + a + "'"};
-      } else if (scene_path.empty()) {
-        scene_path = a;
-      } else {
-        throw BadArgument{"more than one scene file ('" + scene_path + "', '" + a + "')"};
-      }
+    if (!parse_arguments(argc, argv, args)) {
+      std::cout << kUsage;
+      return 0;
     }
-    if (scene_path.empty()) throw BadArgument{"no scene file given"};
-#ifndef TOP_SIM_HAVE_LCM
-    if (!lcm_url.empty()) throw BadArgument{"--lcm: this build has no LCM support (liblcm-dev and lcm-gen were not found)"};
-#endif
   } catch (const BadArgument& e) {
     std::cerr << "top_sim_run: " << e.message << "\n" << kUsage;
     return 2;
   }
 
   Scene scene;
-  try {
-    scene = load_scene(scene_path);
-  } catch (const SceneError& e) {
-    std::cerr << "top_sim_run: bad scene: " << e.what() << "\n";
-    return 2;
-  }
-  for (const auto& w : scene.warnings) std::cerr << "top_sim_run: warning: " << w << "\n";
-
   std::ofstream csv;
-  if (!csv_path.empty()) {
-    csv.open(csv_path);
-    if (!csv) {
-      std::cerr << "top_sim_run: --csv = '" << csv_path << "': cannot open for writing\n";
-      return 2;
-    }
-    write_csv_header(csv);
-  }
+  if (!load(args.scene_path, scene) || !open_csv(args.csv_path, csv)) return 2;
 
   Simulator sim(scene);
   RunOptions opt;
-  opt.duration = duration > 0.0 ? duration : scene.duration;
+  opt.duration = args.duration > 0.0 ? args.duration : scene.duration;
   if (csv.is_open()) {
-    opt.sample_rate = rate;
+    opt.sample_rate = args.rate;
     opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
   }
 #ifdef TOP_SIM_HAVE_LCM
   std::unique_ptr<top_sim_lcm::Publisher> lcm;
-  if (!lcm_url.empty()) {
-    lcm = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
+  if (!args.lcm_url.empty()) {
+    lcm = std::make_unique<top_sim_lcm::Publisher>(args.lcm_url, args.lcm_channel);
     if (!lcm->ok()) {
-      std::cerr << "top_sim_run: --lcm = '" << lcm_url << "': " << lcm->error() << "\n";
+      std::cerr << "top_sim_run: --lcm = '" << args.lcm_url << "': " << lcm->error() << "\n";
       return 2;
     }
-    // Real time (factor 1), paced by top_sim::Pacer like top_sim_node: each sample waits for its wall-clock
-    // instant, then goes out on LCM with the achieved factor of the last wall second. A sample more than 0.5 s
-    // late re-anchors the clock (the debt is dropped) instead of rushing the backlog out.
-    using clock = std::chrono::steady_clock;
-    const clock::time_point wall0 = clock::now();
-    auto wall_now = [wall0] { return std::chrono::duration<double>(clock::now() - wall0).count(); };
-    auto pacer = std::make_shared<Pacer>(1.0, rate, 0.0, sim.time());
-    auto write_csv = opt.on_sample;
-    opt.sample_rate = rate;
-    opt.on_sample = [&, write_csv, wall0, wall_now, pacer](const Snapshot& s) {
-      const double at = pacer->due(wall_now(), s.t);
-      std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(
-                                                std::chrono::duration<double>(at)));
-      const bool was_behind = pacer->behind();
-      pacer->record(wall_now(), s.t);
-      if (pacer->behind() != was_behind) {
-        if (pacer->behind())
-          std::cerr << "top_sim_run: falling behind: achieved " << pacer->achieved_factor()
-                    << " of requested 1 at t = " << s.t << " s\n";
-        else
-          std::cerr << "top_sim_run: caught up at t = " << s.t << " s\n";
-      }
-      static bool warned = false;  // one message, not one per sample
-      if (!lcm->publish(s, pacer->achieved_factor()) && !warned && (warned = true))
-        std::cerr << "top_sim_run: LCM publish on " << lcm_channel << " failed at t = " << s.t << " s\n";
-      if (write_csv) write_csv(s);
-    };
+    stream_over_lcm(*lcm, args.lcm_channel, args.rate, sim.time(), opt);
   }
 #endif
   const RunResult r = run(sim, opt);
-  const std::string json = summary_json(scene, r);
-  if (summary_path == "-") {
-    std::cout << json;
-  } else if (!summary_path.empty()) {
-    std::ofstream out(summary_path);
-    if (!out) {
-      std::cerr << "top_sim_run: --summary = '" << summary_path << "': cannot open for writing\n";
-      return 2;
-    }
-    out << json;
-  }
-  if (summary_path != "-") {
-    std::cout << scene.source << ": " << r.sim_seconds << " s simulated in " << r.cpu_seconds << " s CPU ("
-              << r.stats.steps << " steps, " << r.stats.rhs_evaluations << " right-hand sides), regime "
-              << to_string(r.final.regime);
-    if (r.phi_measured) std::cout << ", phi_measured " << *r.phi_measured;
-    if (r.phi_star) std::cout << ", phi_star " << *r.phi_star;
-    if (r.phi_measured && r.phi_star) std::cout << " (difference " << std::abs(*r.phi_measured - *r.phi_star) << ")";
-    std::cout << ", energy residual " << r.max_energy_residual << "\n";
-    if (!r.stationary_note.empty()) std::cout << "  stationary state: " << r.stationary_note << "\n";
-  }
+  if (!write_summary(args.summary_path, summary_json(scene, r))) return 2;
+  if (args.summary_path != "-") print_result(scene, r);
   if (r.final.fault != ContactFault::none) {
     std::cerr << "top_sim_run: contact fault: " << r.final.fault_message << "\n";
     return 3;

@@ -16,6 +16,7 @@
 
 #include "run_output.hpp"
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/plane.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"
@@ -58,7 +59,7 @@ Outcome run_scene(const Scene& scene, double T, bool timed = true) {
     o.t_end = sim.time();
     o.p = position(sim.state());
     const Eigen::Vector2d d = o.p - mark;
-    if (o.ok && d.norm() > 0.0) o.phi_measured = std::atan2(-d.y(), d.x());
+    if (o.ok && d.norm() > 0.0) o.phi_measured = travel_angle(d.x(), d.y());
     if (s.has_stationary_state) o.phi_star = s.phi_star;
     o.residual = sim.max_energy_residual();
     o.steps = sim.stats().steps;

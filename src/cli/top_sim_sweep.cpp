@@ -10,14 +10,17 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <functional>
 #include <iostream>
 #include <mutex>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
 #include "sweep_point.hpp"
+#include "top_sim/friction.hpp"
 
 namespace {
 
@@ -107,102 +110,110 @@ std::vector<std::string> name_list(const std::string& flag, const std::string& t
   return names;
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// The command line: the grid, how each point runs, the output.
+struct Options {
   std::vector<double> alphas, spins = {200.0};
   std::vector<std::string> tops = {"aluminium"}, planes = {"pmma"};
   std::vector<std::optional<double>> mu_cs = {std::nullopt}, s_cs = {std::nullopt};
   SweepSettings settings;
   std::string out_path = "-";
   unsigned threads = std::max(1u, std::thread::hardware_concurrency());
-  try {
-    alphas = number_list("--alpha", "0.01:0.30:30", [](double) { return true; }, "");
-    for (int i = 1; i < argc; ++i) {
-      const std::string a = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
-        return argv[++i];
-      };
-      if (a == "-h" || a == "--help") {
-        std::cout << kUsage;
-        return 0;
-      } else if (a == "--alpha") {
-        alphas = number_list(a, value(), [](double v) { return v > 0.0 && v < M_PI / 2; }, "in (0, pi/2) [rad]");
-      } else if (a == "--spin") {
-        spins = number_list(a, value(), [](double v) { return v != 0.0 && std::abs(v) <= 1e5; },
-                            "nonzero with |spin| <= 1e5 [rad/s]");
-      } else if (a == "--mu-c" || a == "--s-c") {
-        const bool mu = a == "--mu-c";
-        const auto v = mu ? number_list(a, value(), [](double x) { return x > 0.0; }, "> 0")
-                          : number_list(a, value(), [](double x) { return x > 0.0 && x <= 1.0; }, "in (0, 1]");
-        auto& target = mu ? mu_cs : s_cs;
-        target.assign(v.begin(), v.end());
-      } else if (a == "--top") {
-        tops = name_list(a, value());
-      } else if (a == "--plane") {
-        planes = name_list(a, value());
-      } else if (a == "--start") {
-        const std::string s = value();
-        if (s == "tilted") settings.start = top_sim::SweepStart::tilted;
-        else if (s == "launched") settings.start = top_sim::SweepStart::launched;
-        else throw BadArgument{a + " = '" + s + "': must be tilted | launched"};
-      } else if (a == "--tilt") {
-        settings.tilt = checked(a, value(), [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
-      } else if (a == "--perturbation") {
-        settings.launch_perturbation = checked(a, value(), [](double v) { return v >= 0.0 && v <= 0.5; }, "in [0, 0.5] [rad]");
-      } else if (a == "--max-path") {
-        settings.max_path = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [m]");
-      } else if (a == "--max-duration") {
-        settings.max_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
-        settings.min_duration = std::min(settings.min_duration, settings.max_duration);
-      } else if (a == "--slide-duration") {
-        settings.slide_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
-      } else if (a == "--tol") {
-        settings.phi_tolerance = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [rad]");
-      } else if (a == "--threads") {
-        threads = static_cast<unsigned>(checked(a, value(), [](double v) { return v >= 1 && v <= 1024 && v == std::floor(v); },
-                                                "an integer in [1, 1024]"));
-      } else if (a == "--out") {
-        out_path = value();
-      } else if (a == "--config") {
-        settings.config_dir = value();
-      } else {
-        throw BadArgument{"unknown argument '" + a + "'"};
-      }
-    }
-  } catch (const BadArgument& e) {
-    std::cerr << "top_sim_sweep: " << e.message << "\n" << kUsage;
-    return 2;
-  }
+};
 
-  // The grid, every scene validated before any simulation starts.
+using Value = std::function<std::string()>;  // the flag's value (throws BadArgument when it has none)
+
+// One of the grid's flags into `o`; false when `flag` is not a grid flag.
+bool read_grid_option(const std::string& a, const Value& value, Options& o) {
+  if (a == "--alpha") {
+    o.alphas = number_list(a, value(), [](double v) { return v > 0.0 && v < M_PI / 2; }, "in (0, pi/2) [rad]");
+  } else if (a == "--spin") {
+    o.spins = number_list(a, value(), [](double v) { return v != 0.0 && std::abs(v) <= 1e5; },
+                          "nonzero with |spin| <= 1e5 [rad/s]");
+  } else if (a == "--mu-c" || a == "--s-c") {
+    const bool mu = a == "--mu-c";
+    const top_sim::ParameterRange range = top_sim::find_friction_parameter(mu ? "mu_c" : "s_c")->range;
+    const auto v = number_list(a, value(), [range](double x) { return range.admits(x); }, range.text());
+    auto& target = mu ? o.mu_cs : o.s_cs;
+    target.assign(v.begin(), v.end());
+  } else if (a == "--top") {
+    o.tops = name_list(a, value());
+  } else if (a == "--plane") {
+    o.planes = name_list(a, value());
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// One of the flags of each point's run or of the output into `o`; false when `flag` is none of them.
+bool read_run_option(const std::string& a, const Value& value, Options& o) {
+  SweepSettings& settings = o.settings;
+  if (a == "--start") {
+    const std::string s = value();
+    if (s == "tilted") settings.start = top_sim::SweepStart::tilted;
+    else if (s == "launched") settings.start = top_sim::SweepStart::launched;
+    else throw BadArgument{a + " = '" + s + "': must be tilted | launched"};
+  } else if (a == "--tilt") {
+    settings.tilt = checked(a, value(), [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
+  } else if (a == "--perturbation") {
+    settings.launch_perturbation = checked(a, value(), [](double v) { return v >= 0.0 && v <= 0.5; }, "in [0, 0.5] [rad]");
+  } else if (a == "--max-path") {
+    settings.max_path = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [m]");
+  } else if (a == "--max-duration") {
+    settings.max_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
+    settings.min_duration = std::min(settings.min_duration, settings.max_duration);
+  } else if (a == "--slide-duration") {
+    settings.slide_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
+  } else if (a == "--tol") {
+    settings.phi_tolerance = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [rad]");
+  } else if (a == "--threads") {
+    o.threads = static_cast<unsigned>(checked(a, value(), [](double v) { return v >= 1 && v <= 1024 && v == std::floor(v); },
+                                              "an integer in [1, 1024]"));
+  } else if (a == "--out") {
+    o.out_path = value();
+  } else if (a == "--config") {
+    settings.config_dir = value();
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// Reads the command line into `o` (throws BadArgument); false when it asked for --help.
+bool parse_arguments(int argc, char** argv, Options& o) {
+  o.alphas = number_list("--alpha", "0.01:0.30:30", [](double) { return true; }, "");
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    const Value value = [&]() -> std::string {
+      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") return false;
+    if (!read_grid_option(a, value, o) && !read_run_option(a, value, o))
+      throw BadArgument{"unknown argument '" + a + "'"};
+  }
+  return true;
+}
+
+std::vector<SweepPoint> make_grid(const Options& o) {
   std::vector<SweepPoint> grid;
-  for (const auto& top : tops)
-    for (const auto& plane : planes)
-      for (const auto& mu_c : mu_cs)
-        for (const auto& s_c : s_cs)
-          for (double spin : spins)
-            for (double alpha : alphas) grid.push_back(SweepPoint{top, plane, alpha, spin, mu_c, s_c});
-  try {
-    for (const auto& p : grid) top_sim::make_sweep_scene(p, settings);
-  } catch (const top_sim::SceneError& e) {
-    std::cerr << "top_sim_sweep: bad grid point: " << e.what() << "\n";
-    return 2;
-  }
+  for (const auto& top : o.tops)
+    for (const auto& plane : o.planes)
+      for (const auto& mu_c : o.mu_cs)
+        for (const auto& s_c : o.s_cs)
+          for (double spin : o.spins)
+            for (double alpha : o.alphas) grid.push_back(SweepPoint{top, plane, alpha, spin, mu_c, s_c});
+  return grid;
+}
 
-  std::ofstream file;
-  if (out_path != "-") {
-    file.open(out_path);
-    if (!file) {
-      std::cerr << "top_sim_sweep: --out = '" << out_path << "': cannot open for writing\n";
-      return 2;
-    }
-  }
-  std::ostream& out = out_path == "-" ? std::cout : file;
+double seconds_since(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+}
 
+// Simulates every point on `threads` workers, with a progress line on a terminal.
+std::vector<SweepResult> run_grid(const std::vector<SweepPoint>& grid, const SweepSettings& settings, unsigned threads,
+                                  std::chrono::steady_clock::time_point wall0) {
   const bool tty = isatty(fileno(stderr));
-  const auto wall0 = std::chrono::steady_clock::now();
   std::vector<SweepResult> results(grid.size());
   std::atomic<std::size_t> next{0};
   std::size_t done = 0;
@@ -213,20 +224,23 @@ int main(int argc, char** argv) {
       std::lock_guard<std::mutex> lock(progress_mutex);
       ++done;
       if (tty) {
-        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
         std::fprintf(stderr, "\r[%zu/%zu] %s/%s alpha %.4f spin %g: %-11s %7.1f s simulated, %5.1f s wall   ",
                      done, grid.size(), grid[i].top.c_str(), grid[i].plane.c_str(), grid[i].alpha, grid[i].spin,
-                     results[i].outcome.c_str(), results[i].sim_seconds, wall);
+                     results[i].outcome.c_str(), results[i].sim_seconds, seconds_since(wall0));
         std::fflush(stderr);
       }
     }
   };
-  threads = std::min<unsigned>(threads, static_cast<unsigned>(grid.size()));
   std::vector<std::thread> pool;
   for (unsigned k = 0; k < threads; ++k) pool.emplace_back(worker);
   for (auto& t : pool) t.join();
   if (tty) std::fprintf(stderr, "\n");
+  return results;
+}
 
+// The CSV and a summary line on stderr; the exit status (3 when some point ended in a contact fault).
+int write_results(std::ostream& out, const std::vector<SweepResult>& results, unsigned threads,
+                  std::chrono::steady_clock::time_point wall0) {
   top_sim::write_sweep_header(out);
   double cpu = 0.0;
   int faults = 0;
@@ -239,8 +253,46 @@ int main(int argc, char** argv) {
     }
   }
   out.flush();
-  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - wall0).count();
-  std::cerr << "top_sim_sweep: " << grid.size() << " points on " << threads << " threads in " << wall << " s wall, "
-            << cpu << " s CPU\n";
+  std::cerr << "top_sim_sweep: " << results.size() << " points on " << threads << " threads in "
+            << seconds_since(wall0) << " s wall, " << cpu << " s CPU\n";
   return faults > 0 ? 3 : 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Options opt;
+  try {
+    if (!parse_arguments(argc, argv, opt)) {
+      std::cout << kUsage;
+      return 0;
+    }
+  } catch (const BadArgument& e) {
+    std::cerr << "top_sim_sweep: " << e.message << "\n" << kUsage;
+    return 2;
+  }
+
+  // The grid, every scene validated before any simulation starts.
+  const std::vector<SweepPoint> grid = make_grid(opt);
+  try {
+    for (const auto& p : grid) top_sim::make_sweep_scene(p, opt.settings);
+  } catch (const top_sim::SceneError& e) {
+    std::cerr << "top_sim_sweep: bad grid point: " << e.what() << "\n";
+    return 2;
+  }
+
+  std::ofstream file;
+  if (opt.out_path != "-") {
+    file.open(opt.out_path);
+    if (!file) {
+      std::cerr << "top_sim_sweep: --out = '" << opt.out_path << "': cannot open for writing\n";
+      return 2;
+    }
+  }
+  std::ostream& out = opt.out_path == "-" ? std::cout : file;
+
+  const auto wall0 = std::chrono::steady_clock::now();
+  const unsigned threads = std::min<unsigned>(opt.threads, static_cast<unsigned>(grid.size()));
+  const std::vector<SweepResult> results = run_grid(grid, opt.settings, threads, wall0);
+  return write_results(out, results, threads, wall0);
 }

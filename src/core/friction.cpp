@@ -7,24 +7,60 @@
 
 namespace top_sim {
 
+namespace {
+std::string format_bound(double v) {
+  std::ostringstream os;
+  os << v;
+  return os.str();
+}
+}  // namespace
+
+bool ParameterRange::admits(double v) const {
+  return std::isfinite(v) && (lower_open ? v > lower : v >= lower) && (upper_open ? v < upper : v <= upper);
+}
+
+std::string ParameterRange::text() const {
+  const bool bounded_below = std::isfinite(lower), bounded_above = std::isfinite(upper);
+  if (!bounded_below && !bounded_above) return "a finite number";
+  if (!bounded_above) return (lower_open ? "> " : ">= ") + format_bound(lower);
+  if (!bounded_below) return (upper_open ? "< " : "<= ") + format_bound(upper);
+  return std::string("in ") + (lower_open ? "(" : "[") + format_bound(lower) + ", " + format_bound(upper) +
+         (upper_open ? ")" : "]");
+}
+
+const FrictionParameter* find_friction_parameter(const std::string& name) {
+  for (const FrictionParameter& p : kFrictionParameters)
+    if (name == p.name) return &p;
+  return nullptr;
+}
+
+std::string friction_parameter_names(FrictionLawKind kind) {
+  std::string names;
+  for (const FrictionParameter& p : kFrictionParameters)
+    if (p.law == kind) names += (names.empty() ? "" : ", ") + std::string(p.name);
+  if (kind == kFrictionPointsLaw) names += (names.empty() ? "" : ", ") + std::string(kFrictionPointsKey);
+  return names;
+}
+
 const char* to_string(FrictionLawKind kind) {
-  switch (kind) {
-    case FrictionLawKind::paper: return "paper";
-    case FrictionLawKind::linearized: return "linearized";
-    case FrictionLawKind::coulomb: return "coulomb";
-    case FrictionLawKind::table: return "table";
-  }
+  for (const FrictionLawName& n : kFrictionLawNames)
+    if (n.kind == kind) return n.name;
   return "?";
 }
 
 bool parse_friction_law_kind(const std::string& name, FrictionLawKind& out) {
-  for (FrictionLawKind k : {FrictionLawKind::paper, FrictionLawKind::linearized, FrictionLawKind::coulomb,
-                            FrictionLawKind::table})
-    if (name == to_string(k)) {
-      out = k;
+  for (const FrictionLawName& n : kFrictionLawNames)
+    if (name == n.name) {
+      out = n.kind;
       return true;
     }
   return false;
+}
+
+std::string friction_law_names(const char* separator) {
+  std::string names;
+  for (const FrictionLawName& n : kFrictionLawNames) names += (names.empty() ? "" : separator) + std::string(n.name);
+  return names;
 }
 
 double raw_friction_coefficient(const FrictionLaw& law, double s) {
@@ -77,21 +113,18 @@ std::string bad(const std::string& field, double value, const std::string& range
 }  // namespace
 
 std::string validate(const FrictionLaw& law) {
+  for (const FrictionParameter& p : kFrictionParameters)
+    if (p.law == law.kind && !p.range.admits(law.*p.member))
+      return bad(std::string("friction.") + p.name, law.*p.member, p.range.text());
   switch (law.kind) {
     case FrictionLawKind::paper:
-      if (!(std::isfinite(law.mu_c) && law.mu_c > 0.0)) return bad("friction.mu_c", law.mu_c, "> 0");
-      if (!(law.s_c > 0.0 && law.s_c <= 1.0)) return bad("friction.s_c", law.s_c, "in (0, 1]");
       return "";
     case FrictionLawKind::linearized:
-      if (!std::isfinite(law.mu0)) return bad("friction.mu0", law.mu0, "finite");
-      if (!std::isfinite(law.k)) return bad("friction.k", law.k, "finite");
-      if (!(law.s0 >= 0.0 && law.s0 <= 1.0)) return bad("friction.s0", law.s0, "in [0, 1]");
       if (raw_friction_coefficient(law, 0.0) <= 0.0 && raw_friction_coefficient(law, 1.0) <= 0.0)
         return "friction (linearized): mu0 = " + std::to_string(law.mu0) + ", k = " + std::to_string(law.k) +
                ", s0 = " + std::to_string(law.s0) + " give mu(s) <= 0 on all of [0, 1]: no friction at all";
       return "";
     case FrictionLawKind::coulomb:
-      if (!(std::isfinite(law.mu) && law.mu >= 0.0)) return bad("friction.mu", law.mu, ">= 0 and finite");
       return "";
     case FrictionLawKind::table: {
       const auto& p = law.points;

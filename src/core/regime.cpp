@@ -3,8 +3,6 @@
 
 #include <cmath>
 
-#include "top_sim/stationary.hpp"
-
 namespace top_sim {
 
 const char* to_string(Regime r) {
@@ -18,7 +16,8 @@ const char* to_string(Regime r) {
   return "?";
 }
 
-RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn) {
+RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
+                                   const StationaryState& st) {
   RegimeIndicators ind;
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
@@ -54,7 +53,6 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   ind.acceleration = dyn.a_cm.norm();
   ind.speed = (velocity3(y) + w.cross(top.com_offset * f_hat)).norm();
 
-  const StationaryState st = stationary_state(model, w.dot(f_hat));
   ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
   return ind;
 }

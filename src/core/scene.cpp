@@ -174,55 +174,178 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
   return top;
 }
 
+Plane read_plane(Section& root, const std::string& file) {
+  Section p(root.raw("plane"), file, "plane");
+  const double alpha = p.number("inclination", 0.1, [](double v) { return std::abs(v) < M_PI / 2; },
+                                "in (-pi/2, pi/2) [rad]");
+  const double g = p.number("gravity", 9.81, positive, "> 0 [m/s^2]");
+  p.finish();
+  return make_plane(alpha, g);
+}
+
+// model.normal_force and model.kind; the adiabatic model is checked against the plane and friction already read.
+void read_model_options(Section& root, const std::string& file, Model& model) {
+  Section m(root.raw("model"), file, "model");
+  model.normal_force = m.word("normal_force", "constrained", {"constrained", "static"}) == "static"
+                           ? NormalForceModel::static_approximation
+                           : NormalForceModel::constrained;
+  model.kind = m.word("kind", "full", {"full", "adiabatic"}) == "adiabatic" ? ModelKind::adiabatic : ModelKind::full;
+  m.finish();
+  if (model.kind == ModelKind::adiabatic) {
+    const std::string e = adiabatic_validity(model);
+    if (!e.empty()) throw SceneError(file, "model.kind", e);
+  }
+}
+
+// contact.* of physics.md section 9, checked against the normal-force model and friction.static already read.
+void read_contact(Section& root, const std::string& file, Model& model) {
+  Section c(root.raw("contact"), file, "contact");
+  ContactSettings& cs = model.contact;
+  cs.restitution = c.number("restitution", cs.restitution, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
+  cs.stick_speed = c.number("stick_speed", cs.stick_speed, positive, "> 0 [m/s]");
+  cs.settle_speed = c.number("settle_speed", cs.settle_speed, positive, "> 0 [m/s]");
+  c.finish();
+  // The static normal force keeps the paper's permanent slipping contact: no rolling, no bounce.
+  if (model.normal_force == NormalForceModel::static_approximation) {
+    if (cs.static_friction && *cs.static_friction > 0.0)
+      throw SceneError(file, "friction.static",
+                       fmt(*cs.static_friction) + " > 0 needs rolling, but model.normal_force = static keeps a "
+                       "permanent slipping contact (physics.md section 9); use model.normal_force: constrained "
+                       "or friction.static: 0");
+    if (cs.restitution > 0.0)
+      throw SceneError(file, "contact.restitution",
+                       fmt(cs.restitution) + " > 0 needs flight and impacts, but model.normal_force = static "
+                       "keeps a permanent contact (physics.md section 9); use model.normal_force: constrained "
+                       "or contact.restitution: 0");
+  }
+}
+
+RegimeThresholds read_regime_thresholds(Section& root, const std::string& file) {
+  Section r(root.raw("regime"), file, "regime");
+  RegimeThresholds th;
+  th.nutation_angle = r.number("nutation_angle", th.nutation_angle, positive, "> 0 [rad]");
+  th.nutation_rate = r.number("nutation_rate", th.nutation_rate, positive, "> 0 [rad/s]");
+  th.sleep_turn_rate = r.number("sleep_turn_rate", th.sleep_turn_rate, positive, "> 0 [1/s]");
+  th.sleep_acceleration = r.number("sleep_acceleration", th.sleep_acceleration, positive, "> 0 [m/s^2]");
+  r.finish();
+  return th;
+}
+
+// initial.*, checked against the model (a flight start needs contact modes; a stationary start a sleeping state).
+void read_initial(Section& root, const std::string& file, const Model& model, InitialConditions& ic) {
+  Section i(root.raw("initial"), file, "initial");
+  ic.start = i.word("start", "tilted", {"tilted", "stationary"}) == "stationary" ? StartKind::stationary : StartKind::tilted;
+  ic.tilt = i.number("tilt", ic.tilt, [](double v) { return v >= 0.0 && v < M_PI; }, "in [0, pi) [rad]");
+  ic.tilt_azimuth = i.number("tilt_azimuth", ic.tilt_azimuth, finite, "a finite number [rad]");
+  ic.spin = i.number("spin", ic.spin, finite, "a finite number [rad/s]");
+  ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
+  ic.position = i.pair("position", ic.position);
+  ic.velocity = i.pair("velocity", ic.velocity);
+  ic.gap = i.number("gap", ic.gap, non_negative, ">= 0 [m] (height of the tip sphere above the plane)");
+  ic.gap_rate = i.number("gap_rate", ic.gap_rate, finite, "a finite number [m/s] (normal velocity of the tip sphere)");
+  i.finish();
+  if ((ic.gap > 0.0 || ic.gap_rate != 0.0) && !has_contact_modes(model))
+    throw SceneError(file, ic.gap > 0.0 ? "initial.gap" : "initial.gap_rate",
+                     "a flight start needs model.normal_force: constrained and model.kind: full "
+                     "(the other models keep a permanent contact)");
+  if (ic.gap == 0.0 && ic.gap_rate < 0.0)
+    throw SceneError(file, "initial.gap_rate", fmt(ic.gap_rate) + " < 0 at gap 0 would start inside the plane; "
+                     "must be >= 0 when initial.gap is 0");
+  if (ic.start == StartKind::stationary) {
+    const StationaryState st = stationary_state(model, ic.spin);
+    if (!st.exists) throw SceneError(file, "initial.start", "'stationary' is impossible: " + st.reason);
+  }
+}
+
+IntegratorSettings read_integrator(Section& root, const std::string& file) {
+  Section g(root.raw("integrator"), file, "integrator");
+  IntegratorSettings is;
+  const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4", "switching"});
+  parse_method(method, is.method);
+  is.dt = g.number("dt", is.dt, [](double v) { return v > 0.0 && v <= 10.0; }, "in (0, 10] [s]");
+  is.rtol = g.number("rtol", is.rtol, [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
+  is.atol = g.number("atol", is.atol, positive, "> 0");
+  is.max_dt = g.number("max_dt", is.max_dt, non_negative, ">= 0 [s] (0 = unbounded)");
+  g.finish();
+  return is;
+}
+
+// One entry of `events:`, validated as a command against the scene's model; `last_t` keeps them in time order.
+ScriptedEvent read_event(const YAML::Node& node, const std::string& file, const std::string& path, const Model& model,
+                         double& last_t) {
+  Section e(node, file, path);
+  ScriptedEvent event;
+  if (!e.has("t")) throw SceneError(file, path + ".t", "required: the event time [s]");
+  const double previous = last_t;
+  event.t = e.number("t", 0.0, [previous](double v) { return v >= previous; },
+                     ">= 0 and >= the previous event's t = " + fmt(previous) + " [s]");
+  last_t = event.t;
+  Command& c = event.command;
+  if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, [](double v) { return std::abs(v) < M_PI / 2; }, "in (-pi/2, pi/2) [rad]");
+  if (e.has("spin")) c.spin = e.number("spin", 0.0, finite, "a finite number [rad/s]");
+  if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, finite, "a finite number [rad/s]");
+  if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
+  e.finish();
+  if (c.empty()) throw SceneError(file, path, "changes nothing (give inclination, spin, rotor_spin or rotor_coupling)");
+  const std::string err = validate(c, model);
+  if (!err.empty()) throw SceneError(file, path, err);
+  return event;
+}
+
+std::vector<ScriptedEvent> read_events(Section& root, const std::string& file, const Model& model) {
+  std::vector<ScriptedEvent> events;
+  const YAML::Node ev = root.raw("events");
+  if (!ev || ev.IsNull()) return events;
+  if (!ev.IsSequence()) throw SceneError(file, "events", show(ev) + " must be a list of {t: ..., ...} entries");
+  double last_t = 0.0;
+  for (std::size_t k = 0; k < ev.size(); ++k)
+    events.push_back(read_event(ev[k], file, "events[" + std::to_string(k) + "]", model, last_t));
+  return events;
+}
+
 }  // namespace
+
+// A key of another law is an error that names both laws and the keys this law takes.
+static void reject_foreign_parameter(Section& s, const std::string& file, const char* key, FrictionLawKind owner,
+                                     FrictionLawKind kind) {
+  if (kind == owner || !s.has(key)) return;
+  const std::string name = to_string(kind);
+  throw SceneError(file, join(s.path(), key),
+                   show(s.raw(key)) + " is not a parameter of law " + name + " (it belongs to law " +
+                       to_string(owner) + "); law " + name + " takes: " + friction_parameter_names(kind) +
+                       ", regularization_speed, static");
+}
+
+static std::vector<std::pair<double, double>> read_friction_points(Section& s, const std::string& file) {
+  std::vector<std::pair<double, double>> points;
+  const YAML::Node pts = s.raw(kFrictionPointsKey);
+  const std::string key = join(s.path(), kFrictionPointsKey);
+  if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
+    points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
+                        s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
+  }
+  return points;
+}
 
 static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps,
                                      std::optional<double>& static_friction) {
   FrictionLaw law;
-  const std::string kind = s.word("law", "paper", {"paper", "linearized", "coulomb", "table"});
-  parse_friction_law_kind(kind, law.kind);  // word() admitted only the four names
+  std::vector<std::string> names;
+  for (const FrictionLawName& n : kFrictionLawNames) names.push_back(n.name);
+  const std::string kind = s.word("law", "paper", names);
+  parse_friction_law_kind(kind, law.kind);  // word() admitted only the laws' names
   v_eps = s.number("regularization_speed", 1.0e-9, positive, "> 0 [m/s]");
-  static const char* const accepted[] = {"mu_c, s_c", "mu0, k, s0", "mu", "points"};  // by FrictionLawKind
-  auto only_for = [&](const char* key, FrictionLawKind owner) {
-    if (law.kind != owner && s.has(key))
-      throw SceneError(file, join(s.path(), key),
-                       show(s.raw(key)) + " is not a parameter of law " + kind + " (it belongs to law " +
-                           to_string(owner) + "); law " + kind + " takes: " +
-                           accepted[static_cast<int>(law.kind)] + ", regularization_speed, static");
-  };
-  only_for("mu_c", FrictionLawKind::paper);
-  only_for("s_c", FrictionLawKind::paper);
-  only_for("mu0", FrictionLawKind::linearized);
-  only_for("k", FrictionLawKind::linearized);
-  only_for("s0", FrictionLawKind::linearized);
-  only_for("mu", FrictionLawKind::coulomb);
-  only_for("points", FrictionLawKind::table);
-  switch (law.kind) {
-    case FrictionLawKind::paper:
-      law.mu_c = s.number("mu_c", law.mu_c, positive, "> 0");
-      law.s_c = s.number("s_c", law.s_c, [](double v) { return v > 0.0 && v <= 1.0; }, "in (0, 1]");
-      break;
-    case FrictionLawKind::linearized:
-      law.mu0 = s.number("mu0", law.mu0, finite, "a finite number");
-      law.k = s.number("k", law.k, finite, "a finite number");
-      law.s0 = s.number("s0", law.s0, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
-      break;
-    case FrictionLawKind::coulomb:
-      law.mu = s.number("mu", law.mu, non_negative, ">= 0");
-      break;
-    case FrictionLawKind::table: {
-      const YAML::Node pts = s.raw("points");
-      const std::string key = join(s.path(), "points");
-      if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
-      for (std::size_t i = 0; i < pts.size(); ++i) {
-        const std::string k = key + "[" + std::to_string(i) + "]";
-        if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
-        law.points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
-                                s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
-      }
-      break;
-    }
+  for (const FrictionParameter& p : kFrictionParameters) reject_foreign_parameter(s, file, p.name, p.law, law.kind);
+  reject_foreign_parameter(s, file, kFrictionPointsKey, kFrictionPointsLaw, law.kind);
+  for (const FrictionParameter& p : kFrictionParameters) {
+    if (p.law != law.kind) continue;
+    const ParameterRange range = p.range;
+    law.*p.member = s.number(p.name, law.*p.member, [range](double v) { return range.admits(v); }, range.text());
   }
+  if (law.kind == kFrictionPointsLaw) law.points = read_friction_points(s, file);
   const std::string e = validate(law);
   if (!e.empty()) throw SceneError(file, "", e);
   if (s.has("static")) {
@@ -248,15 +371,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   const YAML::Node top_node = resolve_named(s.raw("top"), file, "top", config_dir, "tops", top_source);
   scene.model.top = read_top(top_node, top_source, scene.initial.rotor_spin);
 
-  // plane
-  {
-    Section p(s.raw("plane"), file, "plane");
-    const double alpha = p.number("inclination", 0.1, [](double v) { return std::abs(v) < M_PI / 2; },
-                                  "in (-pi/2, pi/2) [rad]");
-    const double g = p.number("gravity", 9.81, positive, "> 0 [m/s^2]");
-    scene.model.plane = make_plane(alpha, g);
-    p.finish();
-  }
+  scene.model.plane = read_plane(s, file);
 
   // friction
   {
@@ -271,123 +386,14 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
                                " gives mu(s) < 0 for part of s in [0, 1]; it is clamped to 0 there (friction never propels)");
   }
 
-  // model
-  {
-    Section m(s.raw("model"), file, "model");
-    scene.model.normal_force = m.word("normal_force", "constrained", {"constrained", "static"}) == "static"
-                                   ? NormalForceModel::static_approximation
-                                   : NormalForceModel::constrained;
-    scene.model.kind = m.word("kind", "full", {"full", "adiabatic"}) == "adiabatic" ? ModelKind::adiabatic : ModelKind::full;
-    m.finish();
-    if (scene.model.kind == ModelKind::adiabatic) {
-      const std::string e = adiabatic_validity(scene.model);
-      if (!e.empty()) throw SceneError(file, "model.kind", e);
-    }
-  }
-
-  // contact modes (physics.md section 9)
-  {
-    Section c(s.raw("contact"), file, "contact");
-    ContactSettings& cs = scene.model.contact;
-    cs.restitution = c.number("restitution", cs.restitution, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
-    cs.stick_speed = c.number("stick_speed", cs.stick_speed, positive, "> 0 [m/s]");
-    cs.settle_speed = c.number("settle_speed", cs.settle_speed, positive, "> 0 [m/s]");
-    c.finish();
-    // The static normal force keeps the paper's permanent slipping contact: no rolling, no bounce.
-    if (scene.model.normal_force == NormalForceModel::static_approximation) {
-      if (cs.static_friction && *cs.static_friction > 0.0)
-        throw SceneError(file, "friction.static",
-                         fmt(*cs.static_friction) + " > 0 needs rolling, but model.normal_force = static keeps a "
-                         "permanent slipping contact (physics.md section 9); use model.normal_force: constrained "
-                         "or friction.static: 0");
-      if (cs.restitution > 0.0)
-        throw SceneError(file, "contact.restitution",
-                         fmt(cs.restitution) + " > 0 needs flight and impacts, but model.normal_force = static "
-                         "keeps a permanent contact (physics.md section 9); use model.normal_force: constrained "
-                         "or contact.restitution: 0");
-    }
-  }
-
-  // regime thresholds
-  {
-    Section r(s.raw("regime"), file, "regime");
-    RegimeThresholds& th = scene.model.regime;
-    th.nutation_angle = r.number("nutation_angle", th.nutation_angle, positive, "> 0 [rad]");
-    th.nutation_rate = r.number("nutation_rate", th.nutation_rate, positive, "> 0 [rad/s]");
-    th.sleep_turn_rate = r.number("sleep_turn_rate", th.sleep_turn_rate, positive, "> 0 [1/s]");
-    th.sleep_acceleration = r.number("sleep_acceleration", th.sleep_acceleration, positive, "> 0 [m/s^2]");
-    r.finish();
-  }
-
-  // initial
-  {
-    Section i(s.raw("initial"), file, "initial");
-    InitialConditions& ic = scene.initial;
-    ic.start = i.word("start", "tilted", {"tilted", "stationary"}) == "stationary" ? StartKind::stationary : StartKind::tilted;
-    ic.tilt = i.number("tilt", ic.tilt, [](double v) { return v >= 0.0 && v < M_PI; }, "in [0, pi) [rad]");
-    ic.tilt_azimuth = i.number("tilt_azimuth", ic.tilt_azimuth, finite, "a finite number [rad]");
-    ic.spin = i.number("spin", ic.spin, finite, "a finite number [rad/s]");
-    ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
-    ic.position = i.pair("position", ic.position);
-    ic.velocity = i.pair("velocity", ic.velocity);
-    ic.gap = i.number("gap", ic.gap, non_negative, ">= 0 [m] (height of the tip sphere above the plane)");
-    ic.gap_rate = i.number("gap_rate", ic.gap_rate, finite, "a finite number [m/s] (normal velocity of the tip sphere)");
-    i.finish();
-    if ((ic.gap > 0.0 || ic.gap_rate != 0.0) && !has_contact_modes(scene.model))
-      throw SceneError(file, ic.gap > 0.0 ? "initial.gap" : "initial.gap_rate",
-                       "a flight start needs model.normal_force: constrained and model.kind: full "
-                       "(the other models keep a permanent contact)");
-    if (ic.gap == 0.0 && ic.gap_rate < 0.0)
-      throw SceneError(file, "initial.gap_rate", fmt(ic.gap_rate) + " < 0 at gap 0 would start inside the plane; "
-                       "must be >= 0 when initial.gap is 0");
-    if (ic.start == StartKind::stationary) {
-      const StationaryState st = stationary_state(scene.model, ic.spin);
-      if (!st.exists) throw SceneError(file, "initial.start", "'stationary' is impossible: " + st.reason);
-    }
-  }
-
-  // integrator
-  {
-    Section g(s.raw("integrator"), file, "integrator");
-    IntegratorSettings& is = scene.integrator;
-    const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4", "switching"});
-    parse_method(method, is.method);
-    is.dt = g.number("dt", is.dt, [](double v) { return v > 0.0 && v <= 10.0; }, "in (0, 10] [s]");
-    is.rtol = g.number("rtol", is.rtol, [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
-    is.atol = g.number("atol", is.atol, positive, "> 0");
-    is.max_dt = g.number("max_dt", is.max_dt, non_negative, ">= 0 [s] (0 = unbounded)");
-    g.finish();
-  }
-
+  read_model_options(s, file, scene.model);
+  read_contact(s, file, scene.model);
+  scene.model.regime = read_regime_thresholds(s, file);
+  read_initial(s, file, scene.model, scene.initial);
+  scene.integrator = read_integrator(s, file);
   scene.duration = s.number("duration", scene.duration, positive, "> 0 [s]");
 
-  // events
-  {
-    const YAML::Node ev = s.raw("events");
-    if (ev && !ev.IsNull()) {
-      if (!ev.IsSequence()) throw SceneError(file, "events", show(ev) + " must be a list of {t: ..., ...} entries");
-      double last_t = 0.0;
-      for (std::size_t k = 0; k < ev.size(); ++k) {
-        const std::string path = "events[" + std::to_string(k) + "]";
-        Section e(ev[k], file, path);
-        ScriptedEvent event;
-        if (!e.has("t")) throw SceneError(file, path + ".t", "required: the event time [s]");
-        event.t = e.number("t", 0.0, [last_t](double v) { return v >= last_t; },
-                           ">= 0 and >= the previous event's t = " + fmt(last_t) + " [s]");
-        last_t = event.t;
-        Command& c = event.command;
-        if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, [](double v) { return std::abs(v) < M_PI / 2; }, "in (-pi/2, pi/2) [rad]");
-        if (e.has("spin")) c.spin = e.number("spin", 0.0, finite, "a finite number [rad/s]");
-        if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, finite, "a finite number [rad/s]");
-        if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
-        e.finish();
-        if (c.empty()) throw SceneError(file, path, "changes nothing (give inclination, spin, rotor_spin or rotor_coupling)");
-        const std::string err = validate(c, scene.model);
-        if (!err.empty()) throw SceneError(file, path, err);
-        scene.events.push_back(event);
-      }
-    }
-  }
+  scene.events = read_events(s, file, scene.model);
   s.finish();
   return scene;
 }
@@ -415,11 +421,8 @@ StateVector initial_state(const Scene& scene) {
     const StationaryState st = stationary_state(model, ic.spin);
     return stationary_state_vector(model, st, ic.spin, ic.position, ic.rotor_spin);
   }
-  // World -> plane: v_P = Rot_x(alpha)^T v_W.
-  const double ca = std::cos(model.plane.inclination), sa = std::sin(model.plane.inclination);
-  auto to_plane = [ca, sa](const Eigen::Vector3d& v) {
-    return Eigen::Vector3d(v.x(), ca * v.y() + sa * v.z(), -sa * v.y() + ca * v.z());
-  };
+  // The initial keys are world-frame.
+  auto to_plane = [&model](const Eigen::Vector3d& v) { return world_to_plane(model.plane.inclination, v); };
   const Eigen::Vector3d f_hat = to_plane(Eigen::Vector3d(std::sin(ic.tilt) * std::cos(ic.tilt_azimuth),
                                                          std::sin(ic.tilt) * std::sin(ic.tilt_azimuth), std::cos(ic.tilt)));
   const Eigen::Vector3d w_t = to_plane(Eigen::Vector3d(ic.angular_velocity_transverse.x(), ic.angular_velocity_transverse.y(), 0.0));

@@ -95,8 +95,8 @@ void Simulator::reset() {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     pending_.clear();
+    model_ = scene_.model;
   }
-  model_ = scene_.model;
   y_ = initial_state(scene_);
   t_origin_ = t_;
   next_event_ = 0;
@@ -114,7 +114,7 @@ void Simulator::reset() {
   mode_ = initial_mode(model_, y_).mode;
   mode_since_ = t_;
   restart_stepper(true);
-  update_regime();
+  update_sample();
 }
 
 // After any jump of the state, the model or the mode: optionally re-base the energy balance (commands inject
@@ -147,13 +147,14 @@ void Simulator::fail(ContactFault fault, const std::string& message) {
 }
 
 std::string Simulator::submit(const Command& command) {
+  std::lock_guard<std::mutex> lock(pending_mutex_);  // the owner writes model_ only under it
   const std::string error = validate(command, model_);
   if (!error.empty()) return error;
-  std::lock_guard<std::mutex> lock(pending_mutex_);
   pending_.push_back(command);
   return "";
 }
 
+// Called with pending_mutex_ held: it changes model_, which submit() reads from other threads.
 void Simulator::apply_now(const Command& c) {
   const Eigen::Vector3d f_hat = figure_axis(y_).normalized();
   const double spin = shell_spin(y_);
@@ -188,15 +189,15 @@ void Simulator::reclose_contact() {
 }
 
 void Simulator::apply_pending() {
-  std::vector<Command> due;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
+    std::vector<Command> due;
     due.swap(pending_);
+    while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
+      due.push_back(scene_.events[next_event_++].command);
+    if (due.empty()) return;
+    for (const Command& c : due) apply_now(c);
   }
-  while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
-    due.push_back(scene_.events[next_event_++].command);
-  if (due.empty()) return;
-  for (const Command& c : due) apply_now(c);
   reclose_contact();
   restart_stepper(true);
 }
@@ -225,7 +226,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
         if (budgeted && Clock::now() >= deadline && stepper_->time() > t_) {
           y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
           t_ = stepper_->time();
-          update_regime();
+          update_sample();
           return false;
         }
         stepper_->step(t_stop);
@@ -247,7 +248,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
     t_ = t_stop;
   }
   if (fault_ == ContactFault::none) apply_pending();  // events due exactly at t_target take effect now
-  update_regime();
+  update_sample();
   return true;
 }
 
@@ -399,35 +400,35 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
   return out;
 }
 
-void Simulator::update_regime() {
-  if (fault_ != ContactFault::none) {
-    regime_ = Regime::contact_fault;
-    return;
-  }
-  Dynamics dyn;
-  evaluate_dynamics(model_, mode_, y_, dyn);
-  const RegimeIndicators ind = model_.kind == ModelKind::adiabatic ? RegimeIndicators{} : regime_indicators(model_, y_, dyn);
-  regime_ = classify(model_.regime, ind, false, regime_);
+// The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
+void Simulator::update_sample() {
+  sample_ = analyse_sample(model_, mode_, y_);
+  regime_ = fault_ != ContactFault::none ? Regime::contact_fault
+                                         : classify(model_.regime, sample_.indicators, false, regime_);
 }
 
-StationaryState Simulator::stationary() const { return stationary_state(model_, shell_spin(y_)); }
-
 Snapshot Simulator::snapshot() const {
-  Snapshot s = make_snapshot(model_, y_, t_, balance_, stationary(), regime_, mode_);
-  s.regime = regime_;  // classified once, at the end of the last advance (with its hysteresis)
+  Snapshot s = make_snapshot(model_, y_, t_, balance_, sample_, regime_, mode_);
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
     s.fault_message = fault_message_;
-    s.regime = Regime::contact_fault;
   }
   return s;
 }
 
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y) {
+  SampleAnalysis a;
+  evaluate_dynamics(model, mode, y, a.dynamics);
+  a.stationary = stationary_state(model, shell_spin(y));
+  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, a.stationary);
+  return a;
+}
+
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const StationaryState& stationary, Regime previous, ContactMode mode) {
+                       const SampleAnalysis& analysis, Regime regime, ContactMode mode) {
   Snapshot s;
-  Dynamics dyn;
-  evaluate_dynamics(model, mode, y, dyn);
+  const Dynamics& dyn = analysis.dynamics;
+  const StationaryState& stationary = analysis.stationary;
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d w = angular_velocity(y);
@@ -462,17 +463,16 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.friction_force = dyn.friction_force;
     s.com_acceleration = dyn.a_cm;
   }
-  s.phi = (u.x() == 0.0 && u.y() == 0.0) ? 0.0 : std::atan2(-u.y(), u.x());
+  s.phi = travel_angle(u.x(), u.y());
   s.has_stationary_state = stationary.exists && stationary.phi_defined;
   s.phi_star = s.has_stationary_state ? stationary.phi : 0.0;
-  s.indicators = regime_indicators(model, y, dyn);
-  if (model.kind == ModelKind::adiabatic) s.indicators = RegimeIndicators{};
+  s.indicators = analysis.indicators;
   s.fault = ContactFault::none;
   if (model.kind == ModelKind::full) {
     if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
     else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
   }
-  s.regime = classify(model.regime, s.indicators, s.fault != ContactFault::none, previous);
+  s.regime = regime;
   s.energy = mechanical_energy(model, y);
   s.dissipated_work = y[idx::w_diss];
   s.energy_balance_residual = balance.residual(model, y);

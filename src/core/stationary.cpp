@@ -128,7 +128,7 @@ StationaryState stationary_state(const Model& model, double spin) {
   st.velocity = Eigen::Vector2d(rolling.x(), rolling.y()) + st.sliding_speed * down_dir;
   st.phi_defined = st.rolling_speed > 0.0;
   if (st.phi_defined) {
-    st.phi = std::atan2(-st.velocity.y(), st.velocity.x()) + 0.0;  // + 0.0: no "-0" in outputs
+    st.phi = travel_angle(st.velocity.x(), st.velocity.y());
   } else {
     st.reason = R == 0.0 ? "R = 0: the sleeping top does not roll, so its direction of travel phi* is undefined"
                          : "the sleeping top does not move (alpha = 0 or spin = 0): phi* is undefined";

@@ -12,27 +12,18 @@ namespace {
 void copy3(const Eigen::Vector3d& v, double* out) {
   for (int i = 0; i < 3; ++i) out[i] = v[i];
 }
-
-int8_t regime_code(top_sim::Regime r) {
-  switch (r) {
-    case top_sim::Regime::nutating: return top_sim::top_state_t::NUTATING;
-    case top_sim::Regime::precessing: return top_sim::top_state_t::PRECESSING;
-    case top_sim::Regime::sleeping: return top_sim::top_state_t::SLEEPING;
-    case top_sim::Regime::sliding: return top_sim::top_state_t::SLIDING;
-    case top_sim::Regime::contact_fault: return top_sim::top_state_t::CONTACT_FAULT;
-  }
-  return top_sim::top_state_t::CONTACT_FAULT;
-}
-
-int8_t contact_mode_code(top_sim::ContactMode m) {
-  switch (m) {
-    case top_sim::ContactMode::slipping: return top_sim::top_state_t::SLIPPING;
-    case top_sim::ContactMode::rolling: return top_sim::top_state_t::ROLLING;
-    case top_sim::ContactMode::flight: return top_sim::top_state_t::FLIGHT;
-  }
-  return top_sim::top_state_t::SLIPPING;
-}
 }  // namespace
+
+// The message's constants are the core's codes (lcm/top_state_t.lcm keeps their values).
+using top_sim::top_state_t;
+static_assert(top_state_t::NUTATING == top_sim::code(top_sim::Regime::nutating), "top_state_t regime code");
+static_assert(top_state_t::PRECESSING == top_sim::code(top_sim::Regime::precessing), "top_state_t regime code");
+static_assert(top_state_t::SLEEPING == top_sim::code(top_sim::Regime::sleeping), "top_state_t regime code");
+static_assert(top_state_t::SLIDING == top_sim::code(top_sim::Regime::sliding), "top_state_t regime code");
+static_assert(top_state_t::CONTACT_FAULT == top_sim::code(top_sim::Regime::contact_fault), "top_state_t regime code");
+static_assert(top_state_t::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "top_state_t mode code");
+static_assert(top_state_t::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "top_state_t mode code");
+static_assert(top_state_t::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "top_state_t mode code");
 
 void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out) {
   out.utime = static_cast<int64_t>(std::llround(s.t * 1e6));
@@ -58,8 +49,8 @@ void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_st
   out.phi = s.phi;
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;
-  out.regime = regime_code(s.regime);
-  out.contact_mode = contact_mode_code(s.contact_mode);
+  out.regime = static_cast<int8_t>(top_sim::code(s.regime));
+  out.contact_mode = static_cast<int8_t>(top_sim::code(s.contact_mode));
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
   out.gap = s.gap;
   out.energy = s.energy;

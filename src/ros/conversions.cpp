@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "top_sim/plane.hpp"
+
 namespace top_sim_ros {
 
 namespace {
@@ -49,6 +51,48 @@ double arrow_length(double value, double reference, double max_len) {
   return max_len * a / (a + reference);
 }
 
+struct Colour {
+  float r, g, b;
+};
+
+// Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
+Colour mode_colour(top_sim::ContactMode mode) {
+  if (mode == top_sim::ContactMode::rolling) return {0.3f, 0.8f, 0.35f};
+  if (mode == top_sim::ContactMode::flight) return {0.35f, 0.55f, 0.95f};
+  return {0.7f, 0.7f, 0.75f};
+}
+
+// Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
+visualization_msgs::Marker plane_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
+  visualization_msgs::Marker plane = marker(frame, stamp, "plane", visualization_msgs::Marker::CUBE, 0.75f, 0.78f, 0.85f);
+  const double cell = 0.25;
+  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
+  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
+  plane.pose.position.z = -0.0005;
+  plane.scale.x = plane.scale.y = 4 * cell;
+  plane.scale.z = 0.001;
+  plane.color.a = 0.6f;
+  return plane;
+}
+
+// Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule); velocity arrow at the contact.
+void add_arrows(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp,
+                visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  Marker spin = marker(frame, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
+  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
+  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
+  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
+  out.markers.push_back(spin);
+
+  Marker vel = marker(frame, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
+  const double v = s.tip_velocity.norm();
+  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
+  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
+  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
+  out.markers.push_back(vel);
+}
+
 }  // namespace
 
 bool all_finite(const top_sim::Snapshot& s) {
@@ -61,25 +105,15 @@ bool all_finite(const top_sim::Snapshot& s) {
          finite3(s.angular_velocity) && finite3(s.friction_force);
 }
 
-uint8_t regime_code(top_sim::Regime r) {
-  switch (r) {
-    case top_sim::Regime::nutating: return top_sim::TopState::NUTATING;
-    case top_sim::Regime::precessing: return top_sim::TopState::PRECESSING;
-    case top_sim::Regime::sleeping: return top_sim::TopState::SLEEPING;
-    case top_sim::Regime::sliding: return top_sim::TopState::SLIDING;
-    case top_sim::Regime::contact_fault: return top_sim::TopState::CONTACT_FAULT;
-  }
-  return top_sim::TopState::CONTACT_FAULT;
-}
-
-uint8_t contact_mode_code(top_sim::ContactMode m) {
-  switch (m) {
-    case top_sim::ContactMode::slipping: return top_sim::TopState::SLIPPING;
-    case top_sim::ContactMode::rolling: return top_sim::TopState::ROLLING;
-    case top_sim::ContactMode::flight: return top_sim::TopState::FLIGHT;
-  }
-  return top_sim::TopState::SLIPPING;
-}
+// The message's constants are the core's codes (msg/TopState.msg keeps their values).
+static_assert(top_sim::TopState::NUTATING == top_sim::code(top_sim::Regime::nutating), "TopState regime code");
+static_assert(top_sim::TopState::PRECESSING == top_sim::code(top_sim::Regime::precessing), "TopState regime code");
+static_assert(top_sim::TopState::SLEEPING == top_sim::code(top_sim::Regime::sleeping), "TopState regime code");
+static_assert(top_sim::TopState::SLIDING == top_sim::code(top_sim::Regime::sliding), "TopState regime code");
+static_assert(top_sim::TopState::CONTACT_FAULT == top_sim::code(top_sim::Regime::contact_fault), "TopState regime code");
+static_assert(top_sim::TopState::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "TopState mode code");
+static_assert(top_sim::TopState::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "TopState mode code");
+static_assert(top_sim::TopState::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "TopState mode code");
 
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out) {
@@ -105,9 +139,9 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
   out.phi = s.phi;
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;
-  out.regime = regime_code(s.regime);
+  out.regime = top_sim::code(s.regime);
   out.regime_name = top_sim::to_string(s.regime);
-  out.contact_mode = contact_mode_code(s.contact_mode);
+  out.contact_mode = top_sim::code(s.contact_mode);
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
   out.gap = s.gap;
   out.energy = s.energy;
@@ -122,9 +156,7 @@ void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Fra
   world_plane.header.frame_id = frames.world;
   world_plane.child_frame_id = frames.plane;
   world_plane.transform.translation = geometry_msgs::Vector3();
-  // Plane y is uphill: rotating world about x by +alpha lifts it.
-  world_plane.transform.rotation =
-      quaternion(Eigen::Quaterniond(Eigen::AngleAxisd(s.alpha, Eigen::Vector3d::UnitX())));
+  world_plane.transform.rotation = quaternion(top_sim::plane_rotation(s.alpha));
   plane_top.header.stamp = stamp;
   plane_top.header.frame_id = frames.plane;
   plane_top.child_frame_id = frames.top;
@@ -141,30 +173,15 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   const double body_r = std::sqrt(2.0 * top.inertia_axial / top.mass);
   const double body_h = std::max(0.25 * body_r, 2.0 * R);
 
-  // Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
-  Marker plane = marker(frames.plane, stamp, "plane", Marker::CUBE, 0.75f, 0.78f, 0.85f);
-  const double cell = 0.25;
-  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
-  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
-  plane.pose.position.z = -0.0005;
-  plane.scale.x = plane.scale.y = 4 * cell;
-  plane.scale.z = 0.001;
-  plane.color.a = 0.6f;
-  out.markers.push_back(plane);
+  out.markers.push_back(plane_marker(s, frames.plane, stamp));
 
   Marker tip = marker(frames.plane, stamp, "tip", Marker::SPHERE, 0.9f, 0.2f, 0.2f);
   tip.pose.position = point(s.tip_center);
   tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * R;
   out.markers.push_back(tip);
 
-  // Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
-  float br = 0.7f, bg = 0.7f, bb = 0.75f;
-  if (s.contact_mode == top_sim::ContactMode::rolling) {
-    br = 0.3f; bg = 0.8f; bb = 0.35f;
-  } else if (s.contact_mode == top_sim::ContactMode::flight) {
-    br = 0.35f; bg = 0.55f; bb = 0.95f;
-  }
-  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, br, bg, bb);
+  const Colour colour = mode_colour(s.contact_mode);
+  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, colour.r, colour.g, colour.b);
   body.scale.x = body.scale.y = 2.0 * body_r;
   body.scale.z = body_h;
   out.markers.push_back(body);
@@ -177,22 +194,10 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   stem.scale.z = z1 - z0;
   out.markers.push_back(stem);
 
-  // Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule).
-  Marker spin = marker(frames.plane, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
-  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
-  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
-  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
-  out.markers.push_back(spin);
-
-  Marker vel = marker(frames.plane, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
-  const double v = s.tip_velocity.norm();
-  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
-  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
-  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
-  out.markers.push_back(vel);
+  add_arrows(s, frames.plane, stamp, out);
 
   // The contact mode as text above the top ("slipping", "rolling", "flight"), in the body's colour.
-  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, br, bg, bb);
+  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, colour.r, colour.g, colour.b);
   mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, 0.5 * f + body_h + 0.02));
   mode.scale.z = 0.01;  // text height [m]
   mode.text = top_sim::to_string(s.contact_mode);
@@ -211,16 +216,13 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
   if (msg.set_friction) {
     top_sim::FrictionLaw law;
     if (!top_sim::parse_friction_law_kind(msg.friction_law, law.kind)) {
-      error = "friction_law = '" + msg.friction_law + "': must be one of paper, linearized, coulomb, table";
+      error = "friction_law = '" + msg.friction_law + "': must be one of " + top_sim::friction_law_names(", ");
       return c;
     }
-    law.mu_c = msg.mu_c;
-    law.s_c = msg.s_c;
-    law.mu0 = msg.mu0;
-    law.k = msg.k;
-    law.s0 = msg.s0;
-    law.mu = msg.mu;
-    if (law.kind == top_sim::FrictionLawKind::table) {
+#define TOP_SIM_COPY_FROM_MSG(kind, name, range) law.name = msg.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_MSG)
+#undef TOP_SIM_COPY_FROM_MSG
+    if (law.kind == top_sim::kFrictionPointsLaw) {
       if (msg.table_s.size() != msg.table_mu.size()) {
         std::ostringstream os;
         os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()

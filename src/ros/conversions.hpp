@@ -23,9 +23,6 @@ struct Frames {
 // True when every number the messages carry is finite (no NaN may reach a message).
 bool all_finite(const top_sim::Snapshot& s);
 
-uint8_t regime_code(top_sim::Regime r);
-uint8_t contact_mode_code(top_sim::ContactMode m);  // TopState::SLIPPING, ROLLING, FLIGHT
-
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out);
 

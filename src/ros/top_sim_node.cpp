@@ -33,12 +33,17 @@
 
 namespace {
 
-// Parameters of the node itself and of dynamic_reconfigure: everything else under ~ is the scene.
-const std::set<std::string> kNodeKeys = {
-    "publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame", "top_frame",
-    "path_length",  "lcm_url",          "lcm_channel",   "marker_rate", "path_rate",   "path_resolution",
-    "config_dir",   "scene_file",       "alpha",         "spin",        "friction_law", "mu_c",
-    "s_c",          "mu0",              "k",             "s0",          "mu"};
+// Parameters of the node itself and of dynamic_reconfigure (with the friction laws' parameters): everything else
+// under ~ is the scene.
+std::set<std::string> node_keys() {
+  std::set<std::string> keys = {"publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame",
+                                "top_frame",    "path_length",      "lcm_url",       "lcm_channel", "marker_rate",
+                                "path_rate",    "path_resolution",  "config_dir",    "scene_file",  "alpha",
+                                "spin",         "friction_law"};
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) keys.insert(p.name);
+  return keys;
+}
+const std::set<std::string> kNodeKeys = node_keys();
 
 constexpr double kMaxPublishRate = 10000.0;
 
@@ -66,6 +71,54 @@ class TopSimNode {
 
   // Reads parameters and the scene; false (after a fatal log) when the scene is bad.
   bool init() {
+    std::string lcm_url, lcm_channel, config_dir, scene_file;
+    if (!read_parameters(lcm_url, lcm_channel, config_dir, scene_file) || !read_scene(config_dir, scene_file))
+      return false;
+    for (const auto& w : scene_.warnings) ROS_WARN("top_sim_node: %s", w.c_str());
+    sim_ = std::make_unique<top_sim::Simulator>(scene_);
+    advertise();
+    if (!lcm_url.empty()) open_lcm(lcm_url, lcm_channel);
+
+    updater_.setHardwareID("top_sim");
+    updater_.add("simulation", this, &TopSimNode::diagnose);
+
+    // Stamps: simulated time offset by the wall clock at start, so rviz at real_time_factor 1 sees current stamps.
+    stamp_origin_ = ros::Time::now().toSec();
+    if (stamp_origin_ <= 0.0) stamp_origin_ = ros::WallTime::now().toSec();
+    pacer_ = std::make_unique<top_sim::Pacer>(real_time_factor_, publish_rate_, ros::WallTime::now().toSec(),
+                                              sim_->time());
+    diag_wall_ = ros::WallTime::now().toSec();
+    diag_cpu_ = process_cpu_seconds();
+    start_reconfigure();
+    ROS_INFO("top_sim_node: %s, alpha %.4g rad, spin %.4g rad/s, %s, publishing at %.4g Hz, real-time factor %.4g",
+             scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
+             top_sim::to_string(scene_.integrator.method), publish_rate_, real_time_factor_);
+    return true;
+  }
+  // The publish loop on the main thread: the callbacks that arrived (commands and services, answered at once; the
+  // tick right after applies and publishes the commands), one tick, then sleep to the next period. The physics of
+  // a tick is bounded by the Pacer's budget (half the period), so the loop keeps its rate whatever the scene costs.
+  // (A WallTimer hands every tick from roscpp's timer thread to the spinner: at 1 kHz those context switches cost
+  // more CPU than the simulation.)
+  void run() {
+    ros::WallTime next = ros::WallTime::now();
+    while (ros::ok()) {
+      ros::spinOnce();
+      tick();
+      next += ros::WallDuration(1.0 / publish_rate_);
+      const ros::WallTime now = ros::WallTime::now();
+      if (next < now)
+        next = now;  // fell behind (CPU starved): do not burst to catch up
+      else
+        ros::WallTime::sleepUntil(next);
+    }
+  }
+
+ private:
+  // ---- start-up -------------------------------------------------------------------------------------------------
+  // The node's own parameters; false (after a fatal log) when one is out of range.
+  bool read_parameters(std::string& lcm_url, std::string& lcm_channel, std::string& config_dir,
+                       std::string& scene_file) {
     pnh_.param("publish_rate", publish_rate_, 200.0);
     pnh_.param("real_time_factor", real_time_factor_, 1.0);
     pnh_.param("publish_clock", publish_clock_, false);
@@ -76,7 +129,6 @@ class TopSimNode {
     pnh_.param("path_resolution", path_resolution_, 2.0e-4);
     pnh_.param("marker_rate", marker_rate_, 30.0);
     pnh_.param("path_rate", path_rate_, 10.0);
-    std::string lcm_url, lcm_channel, config_dir, scene_file;
     pnh_.param("lcm_url", lcm_url, std::string());
     pnh_.param("lcm_channel", lcm_channel, std::string("TOP_STATE"));
     pnh_.param("config_dir", config_dir, std::string());
@@ -99,7 +151,11 @@ class TopSimNode {
       ROS_FATAL("top_sim_node: parameter %s/%s", pnh_.getNamespace().c_str(), bad.c_str());
       return false;
     }
+    return true;
+  }
 
+  // The scene from the private parameters other than the node's; false (after a fatal log) when it is bad.
+  bool read_scene(const std::string& config_dir, const std::string& scene_file) {
     const std::string where = pnh_.getNamespace() + (scene_file.empty() ? "" : " (" + scene_file + ")");
     try {
       XmlRpc::XmlRpcValue tree;
@@ -113,9 +169,10 @@ class TopSimNode {
       ROS_FATAL("top_sim_node: bad scene parameters: %s", e.what());
       return false;
     }
-    for (const auto& w : scene_.warnings) ROS_WARN("top_sim_node: %s", w.c_str());
-    sim_ = std::make_unique<top_sim::Simulator>(scene_);
+    return true;
+  }
 
+  void advertise() {
     state_pub_ = pnh_.advertise<top_sim::TopState>("top_state", 10);
     marker_pub_ = pnh_.advertise<visualization_msgs::MarkerArray>("markers", 2);
     path_pub_ = pnh_.advertise<nav_msgs::Path>("path", 2);
@@ -127,37 +184,30 @@ class TopSimNode {
     command_sub_ = pnh_.subscribe("command", 10, &TopSimNode::on_command, this, hints);
     reset_srv_ = pnh_.advertiseService("reset", &TopSimNode::on_reset, this);
     pause_srv_ = pnh_.advertiseService("pause", &TopSimNode::on_pause, this);
+  }
 
-    if (!lcm_url.empty()) {
+  // LCM is optional: a failure is logged and the node publishes on ROS only.
+  void open_lcm(const std::string& lcm_url, const std::string& lcm_channel) {
 #ifdef TOP_SIM_HAVE_LCM
-      lcm_ = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
-      if (!lcm_->ok()) {
-        lcm_status_ = "error: " + lcm_->error();
-        ROS_ERROR("top_sim_node: lcm_url = '%s': %s; LCM is off, ROS publishing continues", lcm_url.c_str(),
-                  lcm_->error().c_str());
-        lcm_.reset();
-      } else {
-        lcm_status_ = "on: " + lcm_url + ", channel " + lcm_channel;
-        ROS_INFO("top_sim_node: LCM on '%s', channel %s", lcm_url.c_str(), lcm_channel.c_str());
-      }
-#else
-      lcm_status_ = "error: this build has no LCM support";
-      ROS_ERROR("top_sim_node: lcm_url = '%s': this build has no LCM support; ROS publishing continues",
-                lcm_url.c_str());
-#endif
+    lcm_ = std::make_unique<top_sim_lcm::Publisher>(lcm_url, lcm_channel);
+    if (!lcm_->ok()) {
+      lcm_status_ = "error: " + lcm_->error();
+      ROS_ERROR("top_sim_node: lcm_url = '%s': %s; LCM is off, ROS publishing continues", lcm_url.c_str(),
+                lcm_->error().c_str());
+      lcm_.reset();
+    } else {
+      lcm_status_ = "on: " + lcm_url + ", channel " + lcm_channel;
+      ROS_INFO("top_sim_node: LCM on '%s', channel %s", lcm_url.c_str(), lcm_channel.c_str());
     }
+#else
+    (void)lcm_channel;
+    lcm_status_ = "error: this build has no LCM support";
+    ROS_ERROR("top_sim_node: lcm_url = '%s': this build has no LCM support; ROS publishing continues",
+              lcm_url.c_str());
+#endif
+  }
 
-    updater_.setHardwareID("top_sim");
-    updater_.add("simulation", this, &TopSimNode::diagnose);
-
-    // Stamps: simulated time offset by the wall clock at start, so rviz at real_time_factor 1 sees current stamps.
-    stamp_origin_ = ros::Time::now().toSec();
-    if (stamp_origin_ <= 0.0) stamp_origin_ = ros::WallTime::now().toSec();
-    pacer_ = std::make_unique<top_sim::Pacer>(real_time_factor_, publish_rate_, ros::WallTime::now().toSec(),
-                                              sim_->time());
-    diag_wall_ = ros::WallTime::now().toSec();
-    diag_cpu_ = process_cpu_seconds();
-
+  void start_reconfigure() {
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(reconfigure_mutex_, pnh_);
     config_.alpha = scene_.model.plane.inclination;
     config_.spin = scene_.initial.spin;
@@ -173,32 +223,8 @@ class TopSimNode {
       config_dirty_ = false;
       reconfigure_->updateConfig(config_);
     });
-    ROS_INFO("top_sim_node: %s, alpha %.4g rad, spin %.4g rad/s, %s, publishing at %.4g Hz, real-time factor %.4g",
-             scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
-             top_sim::to_string(scene_.integrator.method), publish_rate_, real_time_factor_);
-    return true;
   }
 
-  // The publish loop on the main thread: the callbacks that arrived (commands and services, answered at once; the
-  // tick right after applies and publishes the commands), one tick, then sleep to the next period. The physics of
-  // a tick is bounded by the Pacer's budget (half the period), so the loop keeps its rate whatever the scene costs.
-  // (A WallTimer hands every tick from roscpp's timer thread to the spinner: at 1 kHz those context switches cost
-  // more CPU than the simulation.)
-  void run() {
-    ros::WallTime next = ros::WallTime::now();
-    while (ros::ok()) {
-      ros::spinOnce();
-      tick();
-      next += ros::WallDuration(1.0 / publish_rate_);
-      const ros::WallTime now = ros::WallTime::now();
-      if (next < now)
-        next = now;  // fell behind (CPU starved): do not burst to catch up
-      else
-        ros::WallTime::sleepUntil(next);
-    }
-  }
-
- private:
   // ---- pacing (top_sim::Pacer, include/top_sim/pacing.hpp) -------------------------------------------------
   void tick() {
     const double wall = ros::WallTime::now().toSec();
@@ -453,14 +479,18 @@ class TopSimNode {
     return true;
   }
 
+  // dynamic_reconfigure's friction fields are named like the core's parameters.
   static void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& cfg) {
     cfg.friction_law = top_sim::to_string(law.kind);
-    cfg.mu_c = law.mu_c;
-    cfg.s_c = law.s_c;
-    cfg.mu0 = law.mu0;
-    cfg.k = law.k;
-    cfg.s0 = law.s0;
-    cfg.mu = law.mu;
+#define TOP_SIM_COPY_TO_CONFIG(kind, name, range) cfg.name = law.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_TO_CONFIG)
+#undef TOP_SIM_COPY_TO_CONFIG
+  }
+
+  static void friction_from_config(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+#define TOP_SIM_COPY_FROM_CONFIG(kind, name, range) law.name = cfg.name;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_CONFIG)
+#undef TOP_SIM_COPY_FROM_CONFIG
   }
 
   void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level) {
@@ -474,26 +504,10 @@ class TopSimNode {
     if ((level & 2) && cfg.spin != config_.spin) c.spin = cfg.spin;
     if (level & 16) {
       top_sim::FrictionLaw law = sim_->model().friction;
-      top_sim::FrictionLawKind kind;
-      if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
-        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be paper, linearized, coulomb or table",
-                 cfg.friction_law.c_str());
+      if (!reconfigured_friction(cfg, law)) {
         cfg = config_;
         return;
       }
-      if (kind == top_sim::FrictionLawKind::table && law.kind != kind) {
-        ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene "
-                 "or a TopCommand; kept the %s law", top_sim::to_string(law.kind));
-        cfg = config_;
-        return;
-      }
-      law.kind = kind;
-      law.mu_c = cfg.mu_c;
-      law.s_c = cfg.s_c;
-      law.mu0 = cfg.mu0;
-      law.k = cfg.k;
-      law.s0 = cfg.s0;
-      law.mu = cfg.mu;
       c.friction = law;
     }
     if (!c.empty()) {
@@ -504,6 +518,34 @@ class TopSimNode {
         cfg.publish_rate = rate;
       }
     }
+    reconfigure_pacing(cfg, level);
+    config_.real_time_factor = real_time_factor_;
+    config_.publish_rate = publish_rate_;
+    cfg.alpha = config_.alpha;  // applied or reverted above; either way config_ holds the value in force
+    cfg.spin = config_.spin;
+  }
+
+  // The law dynamic_reconfigure asks for, over the law in force; false (after a warning) when it names no law or
+  // switches to a table, whose points it cannot carry.
+  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+    top_sim::FrictionLawKind kind;
+    if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
+      ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be one of %s", cfg.friction_law.c_str(),
+               top_sim::friction_law_names(", ").c_str());
+      return false;
+    }
+    if (kind == top_sim::kFrictionPointsLaw && law.kind != kind) {
+      ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene "
+               "or a TopCommand; kept the %s law", top_sim::to_string(law.kind));
+      return false;
+    }
+    law.kind = kind;
+    friction_from_config(cfg, law);
+    return true;
+  }
+
+  // real_time_factor (level 4) and publish_rate (level 8): applied when valid, else warned; cfg shows what holds.
+  void reconfigure_pacing(top_sim::TopSimConfig& cfg, uint32_t level) {
     if (level & 4) {
       if (std::isfinite(cfg.real_time_factor) && cfg.real_time_factor >= 0.0) {
         real_time_factor_ = cfg.real_time_factor;
@@ -522,10 +564,6 @@ class TopSimNode {
       }
       cfg.publish_rate = publish_rate_;
     }
-    config_.real_time_factor = real_time_factor_;
-    config_.publish_rate = publish_rate_;
-    cfg.alpha = config_.alpha;  // applied or reverted above; either way config_ holds the value in force
-    cfg.spin = config_.spin;
   }
 
   ros::NodeHandle nh_, pnh_;

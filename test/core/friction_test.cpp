@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 
 #include "test_util.hpp"
@@ -155,6 +156,39 @@ TEST(FrictionLaws, ValidationNamesFieldValueAndRange) {
   const std::string one = validate(table({{0.5, 0.2}}));
   EXPECT_NE(one.find("points"), std::string::npos) << one;
   EXPECT_NE(one.find("at least 2"), std::string::npos) << one;
+}
+
+// The parameter table is what scene parsing, validation and the adapters iterate: each law's keys come from it.
+TEST(FrictionLaws, ParameterTableNamesEachLawsKeysAndRanges) {
+  EXPECT_EQ(friction_parameter_names(FrictionLawKind::paper), "mu_c, s_c");
+  EXPECT_EQ(friction_parameter_names(FrictionLawKind::linearized), "mu0, k, s0");
+  EXPECT_EQ(friction_parameter_names(FrictionLawKind::coulomb), "mu");
+  EXPECT_EQ(friction_parameter_names(FrictionLawKind::table), "points");
+  EXPECT_EQ(friction_law_names(" | "), "paper | linearized | coulomb | table");
+  for (const FrictionLawName& n : kFrictionLawNames) {
+    FrictionLawKind k;
+    ASSERT_TRUE(parse_friction_law_kind(n.name, k));
+    EXPECT_EQ(k, n.kind);
+    EXPECT_STREQ(to_string(n.kind), n.name);
+  }
+  for (const FrictionParameter& p : kFrictionParameters) {
+    SCOPED_TRACE(p.name);
+    EXPECT_EQ(find_friction_parameter(p.name), &p);
+    FrictionLaw law;
+    law.kind = p.law;
+    EXPECT_EQ(validate(law), "");  // the defaults are admissible
+    law.*p.member = std::numeric_limits<double>::quiet_NaN();
+    EXPECT_EQ(validate(law).rfind(std::string("friction.") + p.name + " = nan: must be " + p.range.text(), 0), 0u)
+        << validate(law);
+  }
+  EXPECT_EQ(find_friction_parameter("points"), nullptr);
+  EXPECT_EQ(ParameterRange::above(0.0).text(), "> 0");
+  EXPECT_EQ(ParameterRange::at_least(0.0).text(), ">= 0");
+  EXPECT_EQ(ParameterRange::between(0.0, true, 1.0, false).text(), "in (0, 1]");
+  EXPECT_EQ(ParameterRange::any().text(), "a finite number");
+  EXPECT_FALSE(ParameterRange::any().admits(std::numeric_limits<double>::infinity()));
+  EXPECT_TRUE(ParameterRange::between(0.0, false, 1.0, false).admits(1.0));
+  EXPECT_FALSE(ParameterRange::between(0.0, true, 1.0, false).admits(0.0));
 }
 
 }  // namespace

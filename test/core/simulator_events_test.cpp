@@ -1,8 +1,10 @@
 // Scripted events, run-time commands, validation and reset of the Simulator.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #include "top_sim/simulator.hpp"
 
@@ -157,6 +159,36 @@ TEST(SimulatorEvents, AdiabaticModelFollowsTheSleepingStateThroughChanges) {
   Command too_steep;
   too_steep.inclination = 0.3;  // above alpha_c = atan(0.25) = 0.245: the reduced model is invalid
   EXPECT_NE(sim.submit(too_steep).find("adiabatic"), std::string::npos);
+}
+
+// The threading contract: another thread submits (validating against the model the owner changes) while the owner
+// advances; every accepted command is applied, in order. (Run under -fsanitize=thread to see a race.)
+TEST(SimulatorEvents, CommandsSubmittedFromAnotherThreadWhileAdvancingAreAllApplied) {
+  Simulator sim(sleeping_scene(0.1, 200.0));
+  std::atomic<bool> done{false};
+  std::atomic<int> accepted{0};
+  std::thread commander([&] {
+    for (int i = 1; i <= 200; ++i) {
+      Command c;
+      c.inclination = 0.1 + 1e-4 * i;
+      if (i % 2 == 0) {
+        FrictionLaw law = sim.scene().model.friction;  // scene(): immutable, safe from any thread
+        law.mu_c = 0.25 + 1e-4 * i;
+        c.friction = law;
+      }
+      if (sim.submit(c).empty()) ++accepted;
+      std::this_thread::yield();
+    }
+    done = true;
+  });
+  double t = 0.0;
+  while (!done) sim.advance_to(t += 1e-3);
+  commander.join();
+  sim.advance_to(t + 1e-3);  // the last commands take effect
+  EXPECT_EQ(accepted, 200);
+  EXPECT_DOUBLE_EQ(sim.model().plane.inclination, 0.1 + 1e-4 * 200);
+  EXPECT_DOUBLE_EQ(sim.model().friction.mu_c, 0.25 + 1e-4 * 200);
+  EXPECT_EQ(sim.fault(), ContactFault::none);
 }
 
 }  // namespace

@@ -79,6 +79,25 @@ TEST(TopCommand, FrictionLawByName) {
   EXPECT_NE(error.find("friction_law = 'viscous'"), std::string::npos) << error;
 }
 
+// Every scalar parameter of the core's table reaches the law (the message's fields carry the parameters' names).
+TEST(TopCommand, EveryFrictionParameterIsCarried) {
+  top_sim::TopCommand m;
+  m.set_friction = true;
+  m.friction_law = "linearized";
+  double value = 0.0;
+#define TOP_SIM_SET_FIELD(kind, name, range) m.name = (value += 0.125);
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_SET_FIELD)
+#undef TOP_SIM_SET_FIELD
+  std::string error;
+  const top_sim::Command c = to_command(m, error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.friction);
+  value = 0.0;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
+    EXPECT_EQ((*c.friction).*p.member, value += 0.125) << p.name;
+  EXPECT_EQ(c.friction->mu0, 0.375);  // the table's third parameter, by name
+}
+
 TEST(TopCommand, EmptyCommandIsReported) {
   std::string error;
   to_command(top_sim::TopCommand(), error);
@@ -115,8 +134,8 @@ TEST(Snapshot, NonFiniteValuesAreDetected) {
 }
 
 TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
-  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::sleeping), top_sim::TopState::SLEEPING);
-  EXPECT_EQ(top_sim_ros::regime_code(top_sim::Regime::contact_fault), top_sim::TopState::CONTACT_FAULT);
+  EXPECT_EQ(top_sim::code(top_sim::Regime::sleeping), top_sim::TopState::SLEEPING);
+  EXPECT_EQ(top_sim::code(top_sim::Regime::contact_fault), top_sim::TopState::CONTACT_FAULT);
   top_sim::Snapshot s;
   s.t = 2.5;
   s.regime = top_sim::Regime::sliding;
@@ -128,9 +147,9 @@ TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
 }
 
 TEST(TopStateMsg, ContactModeAndGapAreMapped) {
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::slipping), top_sim::TopState::SLIPPING);
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::rolling), top_sim::TopState::ROLLING);
-  EXPECT_EQ(top_sim_ros::contact_mode_code(top_sim::ContactMode::flight), top_sim::TopState::FLIGHT);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::slipping), top_sim::TopState::SLIPPING);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::rolling), top_sim::TopState::ROLLING);
+  EXPECT_EQ(top_sim::code(top_sim::ContactMode::flight), top_sim::TopState::FLIGHT);
   const struct {
     top_sim::ContactMode mode;
     uint8_t code;
