@@ -13,6 +13,10 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep)  # the CLI tests run both
   add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
 
+  # No function over 60 lines without a reason in its comment (scripts/check_function_length.py).
+  find_package(Python3 COMPONENTS Interpreter REQUIRED)
+  add_test(NAME function_length COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_function_length.py)
+
   # Another CMake project links the installed core through find_package(top_sim_core).
   add_test(NAME install_and_find_package COMMAND ${CMAKE_COMMAND}
     -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}

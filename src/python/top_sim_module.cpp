@@ -280,12 +280,14 @@ py::dict stats(PySimulator& p) {
   return d;
 }
 
-}  // namespace
+// A read-only property: the getter's value, read under ownership of the simulator.
+template <class R>
+auto reader(R (Simulator::*get)() const) {
+  return [get](PySimulator& p) { return p.read([get](Simulator& s) { return (s.*get)(); }); };
+}
 
-PYBIND11_MODULE(top_sim, m) {
-  m.doc() = "top_sim: a spinning top with a spherical tip on an inclined plane (the physics core of top_sim)";
+void bind_scenes(py::module_& m) {
   py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
-
   py::class_<Scene>(m, "Scene", "A validated scene (load it with top_sim.load_scene)")
       .def_readonly("source", &Scene::source)
       .def_readonly("duration", &Scene::duration)
@@ -300,28 +302,32 @@ PYBIND11_MODULE(top_sim, m) {
         "of a scene file; raises top_sim.SceneError naming the file, key, value and allowed range.");
   m.def("config_dir", &default_config_dir, "The data directory (tops/, planes/, scenes/) the module uses.");
   m.def("stationary_state",
-        [](const py::object& source, py::object spin) {
+        [](const py::object& source, const py::object& spin) {
           const Scene scene = scene_from(source);
-          return stationary_dict(stationary_state(scene.model, spin.is_none() ? scene.initial.spin : spin.cast<double>()));
+          const double w = spin.is_none() ? scene.initial.spin : spin.cast<double>();
+          return stationary_dict(stationary_state(scene.model, w));
         },
         py::arg("scene"), py::arg("spin") = py::none(),
         "The analytic sleeping state (physics.md section 5) of a scene at its initial spin or at `spin` [rad/s].");
+}
 
-  std::vector<std::string> names, units;
+// The trajectory columns and the names behind the regime and contact-mode codes.
+void bind_constants(py::module_& m) {
+  std::vector<std::string> names, units, regimes, modes;
   for (const TrajectoryColumn& c : trajectory_columns()) {
     names.push_back(c.name);
     units.push_back(c.unit);
   }
-  m.attr("COLUMNS") = names;
-  m.attr("UNITS") = py::cast(units);
-  std::vector<std::string> regimes, modes;
   for (int r = 0; r <= static_cast<int>(Regime::contact_fault); ++r) regimes.push_back(to_string(static_cast<Regime>(r)));
   for (int c = 0; c < kContactModeCount; ++c) modes.push_back(to_string(static_cast<ContactMode>(c)));
-  m.attr("REGIMES") = regimes;        // trajectory()['regime'] codes index this list
-  m.attr("CONTACT_MODES") = modes;    // trajectory()['contact_mode'] codes index this list
+  m.attr("COLUMNS") = names;
+  m.attr("UNITS") = units;
+  m.attr("REGIMES") = regimes;      // trajectory()['regime'] codes index this list
+  m.attr("CONTACT_MODES") = modes;  // trajectory()['contact_mode'] codes index this list
+}
 
-  py::class_<PySimulator>(m, "Simulator",
-                          "One top. Owned by one thread at a time; simulation releases the GIL.")
+void bind_simulator(py::module_& m) {
+  py::class_<PySimulator>(m, "Simulator", "One top. Owned by one thread at a time; simulation releases the GIL.")
       .def(py::init([](const py::object& source) { return std::make_unique<PySimulator>(scene_from(source)); }),
            py::arg("scene"))
       .def("run", &PySimulator::run, py::arg("duration"), "Advances by `duration` [s]; returns the snapshot.")
@@ -334,15 +340,24 @@ PYBIND11_MODULE(top_sim, m) {
            "it takes effect at the next step boundary. Raises ValueError naming the field, value and range.")
       .def("snapshot", &PySimulator::snapshot, "Every derived quantity of the current instant, as a dict.")
       .def("reset", &PySimulator::reset, "Back to the scene's initial state; time keeps running forward.")
-      .def_property_readonly("time", [](PySimulator& p) { return p.read([](Simulator& s) { return s.time(); }); })
-      .def_property_readonly("state", [](PySimulator& p) { const StateVector y = p.read([](Simulator& s) { return s.state(); }); return array(y); })
-      .def_property_readonly("contact_mode", [](PySimulator& p) { return to_string(p.read([](Simulator& s) { return s.contact_mode(); })); })
-      .def_property_readonly("fault", [](PySimulator& p) { return optional_fault(p.read([](Simulator& s) { return s.fault(); })); })
-      .def_property_readonly("fault_message", [](PySimulator& p) { return p.read([](Simulator& s) { return s.fault_message(); }); })
-      .def_property_readonly("mode_switch_count", [](PySimulator& p) { return p.read([](Simulator& s) { return s.mode_switch_count(); }); })
+      .def("stationary_state", [](PySimulator& p) { return stationary_dict(reader(&Simulator::stationary)(p)); },
+           "The analytic sleeping state for the current inclination and spin.")
+      .def_property_readonly("time", reader(&Simulator::time))
+      .def_property_readonly("state", [](PySimulator& p) { return array(reader(&Simulator::state)(p)); })
+      .def_property_readonly("contact_mode", [](PySimulator& p) { return to_string(reader(&Simulator::contact_mode)(p)); })
+      .def_property_readonly("fault", [](PySimulator& p) { return optional_fault(reader(&Simulator::fault)(p)); })
+      .def_property_readonly("fault_message", reader(&Simulator::fault_message))
+      .def_property_readonly("mode_switch_count", reader(&Simulator::mode_switch_count))
       .def_property_readonly("mode_seconds", &mode_seconds)
       .def_property_readonly("stats", &stats)
-      .def_property_readonly("max_energy_residual", [](PySimulator& p) { return p.read([](Simulator& s) { return s.max_energy_residual(); }); })
-      .def("stationary_state", [](PySimulator& p) { return stationary_dict(p.read([](Simulator& s) { return s.stationary(); })); },
-           "The analytic sleeping state for the current inclination and spin.");
+      .def_property_readonly("max_energy_residual", reader(&Simulator::max_energy_residual));
+}
+
+}  // namespace
+
+PYBIND11_MODULE(top_sim, m) {
+  m.doc() = "top_sim: a spinning top with a spherical tip on an inclined plane (the physics core of top_sim)";
+  bind_scenes(m);
+  bind_constants(m);
+  bind_simulator(m);
 }
