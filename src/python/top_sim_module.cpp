@@ -142,11 +142,42 @@ double number(const py::handle& v, const std::string& key) {
   return v.cast<double>();
 }
 
+// {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table); omitted parameters
+// take FrictionLaw's defaults, as in a scene file.
+FrictionLaw friction_from(const py::handle& value) {
+  if (!py::isinstance<py::dict>(value)) throw py::value_error("friction must be a dict {'law': ..., parameters}");
+  FrictionLaw law;
+  const py::dict d = py::reinterpret_borrow<py::dict>(value);
+  const std::string name = d.contains("law") ? py::str(d["law"]).cast<std::string>() : "";
+  if (!parse_friction_law_kind(name, law.kind))
+    throw py::value_error("friction.law = '" + name + "': must be one of " + friction_law_names(", "));
+  for (const auto& item : d) {
+    const std::string key = py::str(item.first).cast<std::string>();
+    if (key == "law") continue;
+    const FrictionParameter* p = find_friction_parameter(key);
+    if (key == kFrictionPointsKey && law.kind == kFrictionPointsLaw) {
+      for (const auto& point : item.second) {
+        const auto pair = point.cast<std::pair<double, double>>();
+        law.points.push_back(pair);
+      }
+    } else if (p != nullptr && p->law == law.kind) {
+      law.*(p->member) = number(item.second, "friction." + key);
+    } else {
+      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(law.kind));
+    }
+  }
+  return law;
+}
+
 // The keys of top_sim.Command (command.hpp); the core validates the values.
 Command command_from(const py::dict& d) {
   Command c;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
+    if (key == "friction") {
+      c.friction = friction_from(item.second);
+      continue;
+    }
     const double v = number(item.second, key);
     if (key == "inclination") c.inclination = v;
     else if (key == "spin") c.spin = v;
@@ -156,7 +187,7 @@ Command command_from(const py::dict& d) {
     else if (key == "restitution") c.restitution = v;
     else
       throw py::key_error("unknown command key '" + key +
-                          "' (allowed: inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution)");
+                          "' (allowed: inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution, friction)");
   }
   return c;
 }
@@ -336,7 +367,8 @@ void bind_simulator(py::module_& m) {
            "Samples every 1/rate [s] over `duration` (the current instant first): a dict of NumPy arrays, one per "
            "CSV column (top_sim.COLUMNS); regime and contact_mode as codes into REGIMES and CONTACT_MODES.")
       .def("apply", &PySimulator::apply, py::arg("command"),
-           "Queues a command dict (inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution); "
+           "Queues a command dict (inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution, "
+           "friction={'law': ..., parameters}); "
            "it takes effect at the next step boundary. Raises ValueError naming the field, value and range.")
       .def("snapshot", &PySimulator::snapshot, "Every derived quantity of the current instant, as a dict.")
       .def("reset", &PySimulator::reset, "Back to the scene's initial state; time keeps running forward.")

@@ -122,6 +122,10 @@ def test_commands_take_effect_and_bad_ones_are_refused():
         sim.apply({"inclination": 2.0})
     with pytest.raises(KeyError, match="alpha"):
         sim.apply({"alpha": 0.1})
+    with pytest.raises(ValueError, match="mu_c"):
+        sim.apply({"friction": {"law": "paper", "mu_c": -1.0}})  # the core's range check: mu_c > 0
+    with pytest.raises(KeyError, match="reads mu_c, s_c"):
+        sim.apply({"friction": {"law": "paper", "mu": 0.3}})
     with pytest.raises(ValueError, match="must be finite and >= the current time"):
         sim.step_to(0.0)
     with pytest.raises(ValueError, match="duration"):
@@ -129,6 +133,15 @@ def test_commands_take_effect_and_bad_ones_are_refused():
     after = sim.snapshot()
     assert after["t"] == before["t"] and after["alpha"] == before["alpha"]  # refused input changes nothing
     np.testing.assert_array_equal(after["com"], before["com"])
+
+
+def test_friction_command_changes_phi_star():
+    sim = top_sim.Simulator("default")
+    sim.run(0.01)
+    sim.apply({"friction": {"law": "paper", "mu_c": 0.4, "s_c": 0.6}})
+    sim.run(0.01)
+    s_star = 0.6 * (1.0 - math.sqrt(1.0 - math.tan(0.1) / 0.4))  # physics.md section 5 with the new law
+    assert sim.stationary_state()["phi"] == pytest.approx(2.0 * math.atan(s_star), abs=1e-12)
 
 
 def test_scene_errors_name_key_value_and_range():
