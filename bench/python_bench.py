@@ -6,8 +6,10 @@ short_advance_and_snapshot, and prints medians of repeated runs (seconds of wall
     PYTHONPATH=build/python python3 bench/python_bench.py [--repeats N]
 """
 import argparse
+import os
 import statistics
 import time
+from concurrent.futures import ThreadPoolExecutor
 
 import top_sim
 
@@ -40,6 +42,15 @@ def main():
     print("sim.snapshot() alone: %8.2f us per call" % (1e6 * per_snap))
     traj = median_seconds(lambda: top_sim.Simulator(scene).trajectory(10.0, 100.0), args.repeats)
     print("trajectory(10 s, 100 Hz) from a new Simulator: %8.3f ms" % (1e3 * traj))
+
+    # The GIL is released while simulating: N threads on N cores should approach N times the throughput.
+    threads = os.cpu_count() or 1
+    batch = lambda _: top_sim.Simulator(scene).run(300.0)
+    seq = median_seconds(lambda: [batch(i) for i in range(4 * threads)], args.repeats)
+    with ThreadPoolExecutor(threads) as pool:
+        par = median_seconds(lambda: list(pool.map(batch, range(4 * threads))), args.repeats)
+    print("%d x 300 s: sequential %.1f ms, %d threads %.1f ms, speed-up %.2f"
+          % (4 * threads, 1e3 * seq, threads, 1e3 * par, seq / par))
 
 
 if __name__ == "__main__":
