@@ -125,6 +125,9 @@ bool load(const std::string& path, top_sim::Scene& scene) {
   } catch (const top_sim::SceneError& e) {
     std::cerr << "top_sim_run: bad scene: " << e.what() << "\n";
     return false;
+  } catch (const std::exception& e) {  // never an abort on input: whatever escaped the loader is still bad input
+    std::cerr << "top_sim_run: bad scene: " << path << ": " << e.what() << "\n";
+    return false;
   }
   for (const auto& w : scene.warnings) std::cerr << "top_sim_run: warning: " << w << "\n";
   return true;
@@ -154,19 +157,30 @@ void print_result(const top_sim::Scene& scene, const top_sim::RunResult& r) {
   if (!r.stationary_note.empty()) std::cout << "  stationary state: " << r.stationary_note << "\n";
 }
 
-// The JSON summary to `path` ("-" = stdout, "" = none); false when the file cannot be written.
+// The JSON summary to `path` ("-" = stdout, "" = none); false (after the message) when it could not be written.
 bool write_summary(const std::string& path, const std::string& json) {
   if (path == "-") {
-    std::cout << json;
-  } else if (!path.empty()) {
-    std::ofstream out(path);
-    if (!out) {
-      std::cerr << "top_sim_run: --summary = '" << path << "': cannot open for writing\n";
-      return false;
-    }
-    out << json;
+    std::cout << json << std::flush;
+    if (!std::cout) std::cerr << "top_sim_run: --summary = '-': writing to standard output failed\n";
+    return static_cast<bool>(std::cout);
   }
-  return true;
+  if (path.empty()) return true;
+  std::ofstream out(path);
+  if (!out) {
+    std::cerr << "top_sim_run: --summary = '" << path << "': cannot open for writing\n";
+    return false;
+  }
+  out << json << std::flush;
+  if (!out) std::cerr << "top_sim_run: --summary = '" << path << "': writing failed (disk full?)\n";
+  return static_cast<bool>(out);
+}
+
+// True when every CSV row reached the file; else says so.
+bool csv_written(const std::string& path, std::ofstream& csv) {
+  if (!csv.is_open()) return true;
+  csv.flush();
+  if (!csv) std::cerr << "top_sim_run: --csv = '" << path << "': writing failed (disk full?); the file is incomplete\n";
+  return static_cast<bool>(csv);
 }
 
 }  // namespace
@@ -207,11 +221,12 @@ int main(int argc, char** argv) {
   }
 #endif
   const RunResult r = run(sim, opt);
-  if (!write_summary(args.summary_path, summary_json(scene, r))) return 2;
+  // Output errors surface after the simulation: exit 1 (the result could not be delivered).
+  const bool written = csv_written(args.csv_path, csv) && write_summary(args.summary_path, summary_json(scene, r));
   if (args.summary_path != "-") print_result(scene, r);
   if (r.final.fault != ContactFault::none) {
     std::cerr << "top_sim_run: contact fault: " << r.final.fault_message << "\n";
     return 3;
   }
-  return 0;
+  return written ? 0 : 1;
 }

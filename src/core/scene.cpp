@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cfloat>
 #include <cmath>
 #include <functional>
 #include <optional>
@@ -12,6 +13,7 @@
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {
@@ -35,11 +37,7 @@ std::string show(const YAML::Node& n) {
   return "null";
 }
 
-std::string fmt(double v) {
-  std::ostringstream os;
-  os << v;
-  return os.str();
-}
+std::string fmt(double v) { return format_number(v); }  // full precision: "6e-06 must be <= 6e-06" never again
 
 // Reads one YAML mapping, remembering which keys were consumed so leftovers are reported as unknown.
 class Section {
@@ -48,6 +46,7 @@ class Section {
       : node_(node), file_(std::move(file)), path_(std::move(path)) {
     if (node_ && !node_.IsNull() && !node_.IsMap())
       throw SceneError(file_, path_, show(node_) + " is not a mapping of keys");
+    check_keys();
   }
 
   bool has(const char* key) {
@@ -74,6 +73,9 @@ class Section {
       throw SceneError(file_, key, show(n) + " is not a number; must be " + range);
     }
     if (!std::isfinite(v) || !ok(v)) throw SceneError(file_, key, fmt(v) + " is out of range; must be " + range);
+    if (std::fpclassify(v) == FP_SUBNORMAL)  // below 2.2e-308: products underflow to 0 (a mass 1e-310 gives N = 0)
+      throw SceneError(file_, key, fmt(v) + " is subnormal (0 < |v| < " + fmt(DBL_MIN) + "); must be " + range +
+                                       " and 0 or at least " + fmt(DBL_MIN) + " in magnitude");
     return v;
   }
 
@@ -102,7 +104,7 @@ class Section {
   void finish() const {
     if (!node_ || !node_.IsMap()) return;
     for (const auto& kv : node_) {
-      const std::string key = kv.first.as<std::string>();
+      const std::string key = kv.first.Scalar();
       if (!seen_.count(key)) {
         std::string known;
         for (const auto& s : seen_) known += (known.empty() ? "" : ", ") + s;
@@ -115,6 +117,18 @@ class Section {
   const std::string& path() const { return path_; }
 
  private:
+  // Keys are words, each given once (YAML readers disagree on which duplicate wins: refuse them all).
+  void check_keys() const {
+    if (!node_ || !node_.IsMap()) return;
+    std::set<std::string> keys;
+    for (const auto& kv : node_) {
+      if (!kv.first.IsScalar())
+        throw SceneError(file_, path_, show(kv.first) + " is not a valid key (keys are words, e.g. mass)");
+      if (!keys.insert(kv.first.Scalar()).second)
+        throw SceneError(file_, join(path_, kv.first.Scalar()), "given twice (each key once)");
+    }
+  }
+
   YAML::Node node_;
   std::string file_, path_;
   std::set<std::string> seen_;
@@ -135,6 +149,7 @@ YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std
     throw SceneError(file, key, "'" + name + "' names a file in " + folder +
                                     "/ but no data directory was found (set TOP_SIM_CONFIG_DIR or give a mapping)");
   const std::string path = dir + "/" + folder + "/" + name + ".yaml";
+  if (is_dir(path)) throw SceneError(file, key, "'" + name + "' names " + path + ", a directory, not a file");
   try {
     source = path;
     return YAML::LoadFile(path);
@@ -143,6 +158,8 @@ YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std
                                     dir + "/" + folder + "/)");
   } catch (const YAML::Exception& e) {
     throw SceneError(path, "", std::string("not valid YAML: ") + e.what());
+  } catch (const std::exception& e) {  // e.g. an unreadable file
+    throw SceneError(path, "", std::string("cannot read: ") + e.what());
   }
 }
 
@@ -400,12 +417,15 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
 
 Scene load_scene(const std::string& path) {
   YAML::Node root;
+  if (is_dir(path)) throw SceneError(path, "", "is a directory, not a scene file");
   try {
     root = YAML::LoadFile(path);
   } catch (const YAML::BadFile&) {
     throw SceneError(path, "", "cannot open the scene file");
   } catch (const YAML::Exception& e) {
     throw SceneError(path, "", std::string("not valid YAML: ") + e.what());
+  } catch (const std::exception& e) {  // e.g. an unreadable file
+    throw SceneError(path, "", std::string("cannot read the scene file: ") + e.what());
   }
   // A scene in <config>/scenes/ finds its tops and planes in <config>/.
   std::string dir = path.find('/') == std::string::npos ? "." : path.substr(0, path.rfind('/'));

@@ -200,3 +200,24 @@ TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 11: a directory as the scene is exit 2 (it aborted); output that cannot be written is exit 1 (it was 0).
+TEST(Cli, DirectoryAsSceneExitsTwo) {
+  const CliResult r = run_cli("'" + top_sim_test::config_dir() + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "is a directory")) << r.err;
+}
+
+TEST(Cli, OutputThatCannotBeWrittenExitsOne) {
+  const std::string scene = "'" + top_sim_test::scene_path("default") + "' --duration 0.5";
+  CliResult r = run_cli(scene + " --csv /dev/full");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "--csv = '/dev/full': writing failed")) << r.err;
+  r = run_cli(scene + " --summary /dev/full");
+  EXPECT_EQ(r.exit_code, 1) << r.err;
+  EXPECT_TRUE(contains(r.err, "--summary = '/dev/full': writing failed")) << r.err;
+}
+
+}  // namespace

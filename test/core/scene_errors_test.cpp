@@ -197,3 +197,39 @@ TEST(SceneErrors, EveryShippedSceneLoads) {
 }
 
 }  // namespace
+
+namespace {
+
+// Issue 11: inputs that used to abort, pass silently or print rounded values.
+TEST(SceneErrors, KeysMustBeWordsGivenOnce) {
+  std::string msg = error_of("top: {[]: 0}\n", "nonscalar.yaml");
+  EXPECT_NE(msg.find("top: a list is not a valid key"), std::string::npos) << msg;
+  msg = error_of("top: aluminium\nfriction: pmma\ntop: steel\n", "dup.yaml");
+  EXPECT_NE(msg.find("dup.yaml: top: given twice"), std::string::npos) << msg;
+  msg = error_of(kTop + "plane: {inclination: 0.1, inclination: 0.2}\n", "dup_nested.yaml");
+  EXPECT_NE(msg.find("plane.inclination: given twice"), std::string::npos) << msg;
+}
+
+TEST(SceneErrors, SubnormalNumbersAreRefused) {
+  const std::string msg = error_of(
+      "top: {mass: 1.0e-310, tip_radius: 0.005, com_offset: 0.01, inertia_axial: 1.0e-5, "
+      "inertia_transverse: 2.0e-5}\n",
+      "subnormal.yaml");
+  EXPECT_NE(msg.find("top.mass: 1e-310 is subnormal"), std::string::npos) << msg;  // a mass that made N = 0
+}
+
+TEST(SceneErrors, ValuesArePrintedAtFullPrecision) {
+  expect_error(kTop + "plane: {inclination: 1.5707963267948966}\n", "plane.inclination", "1.5707963267948966",
+               "(-pi/2, pi/2)");
+}
+
+TEST(SceneErrors, ADirectoryIsNotASceneFile) {
+  try {
+    load_scene(top_sim_test::config_dir());
+    ADD_FAILURE() << "a directory accepted as a scene";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("is a directory, not a scene file"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
