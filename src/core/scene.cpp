@@ -3,6 +3,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cfloat>
 #include <cmath>
 #include <functional>
@@ -13,6 +14,7 @@
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/energy.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/stationary.hpp"
 
@@ -373,6 +375,26 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
   return law;
 }
 
+namespace {
+
+// A state the simulation can start from: finite energy, the figure axis within max_tilt of the plane normal (a top
+// beyond it has fallen: bad input, exit 2, not a fault at t = 0).
+void check_initial_state(const Scene& scene, const std::string& file) {
+  const StateVector y = initial_state(scene);
+  const double energy = mechanical_energy(scene.model, y);
+  if (!all_finite(y) || !std::isfinite(energy))
+    throw SceneError(file, "initial", "the initial energy is " + fmt(energy) +
+                                          " J: a speed, spin or position too large for double precision");
+  const double max_tilt = scene.model.top.max_tilt;
+  const double tilt = std::acos(std::clamp(figure_axis(y).normalized().z(), -1.0, 1.0));  // from the plane normal
+  if (tilt >= max_tilt)
+    throw SceneError(file, scene.initial.start == StartKind::tilted ? "initial.tilt" : "initial.start",
+                     "the figure axis starts " + fmt(tilt) + " rad from the plane normal; must be < top.max_tilt = " +
+                         fmt(max_tilt) + " rad (a top tilted further has fallen over)");
+}
+
+}  // namespace
+
 Scene parse_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir) {
   Scene scene;
   scene.source = source;
@@ -412,6 +434,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
 
   scene.events = read_events(s, file, scene.model);
   s.finish();
+  check_initial_state(scene, file);
   return scene;
 }
 

@@ -85,10 +85,11 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
 
 bool Simulator::in_stiff_layer(const StateVector& y, bool inside) const {
   if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
-  if (!(raw_friction_coefficient(model_.friction, 0.0) > 0.0)) return false;  // no friction kink at v_t = 0
   const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
   const double width = kLayerWidth * std::max(model_.contact.stick_speed, model_.regularization_speed);
-  return k.v_t.norm() < (inside ? 2.0 : 1.0) * width;
+  if (!(k.v_t.norm() < (inside ? 2.0 : 1.0) * width)) return false;
+  // A kink at v_t = 0 needs friction there: mu(0) > 0, or a slip near 1 (no rolling: a point tip, no spin).
+  return raw_friction_coefficient(model_.friction, 0.0) > 0.0 || friction_coefficient(model_.friction, k.slip) > 0.0;
 }
 
 void Simulator::reset() {
@@ -402,6 +403,9 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
 
 // The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
 void Simulator::update_sample() {
+  // A finite state whose energy overflows (speeds ~1e154 m/s and up) is no answer either.
+  if (fault_ == ContactFault::none && !std::isfinite(mechanical_energy(model_, y_)))
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (the energy overflowed)");
   sample_ = analyse_sample(model_, mode_, y_);
   regime_ = fault_ != ContactFault::none ? Regime::contact_fault
                                          : classify(model_.regime, sample_.indicators, false, regime_);

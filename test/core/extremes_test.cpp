@@ -239,8 +239,23 @@ TEST(Painleve, StandardStartStaysConsistentAtMuThreeBecauseItsTiltStaysSmall) {
 
 // ---- faults already present in the initial state --------------------------------------------------------------
 
+TEST(InitialFaults, TiltBeyondMaxTiltIsABadScene) {
+  try {
+    scene_from(aluminium_scene("{inclination: 0.0}", "pmma", "{tilt: 1.3, spin: 200.0}"));
+    ADD_FAILURE() << "a top tilted beyond max_tilt accepted";
+  } catch (const SceneError& e) {  // issue 11: bad input (exit 2), not a contact fault at t = 0 (exit 3)
+    EXPECT_NE(std::string(e.what()).find("initial.tilt: the figure axis starts 1.3 rad from the plane normal; "
+                                         "must be < top.max_tilt = 1.2 rad"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// A Scene built in code (not through the loader) can still start fallen: the Simulator says so at t = 0.
 TEST(InitialFaults, TiltBeyondMaxTiltIsFallenAtTimeZero) {
-  Simulator sim(scene_from(aluminium_scene("{inclination: 0.0}", "pmma", "{tilt: 1.3, spin: 200.0}")));
+  Scene scene = scene_from(aluminium_scene("{inclination: 0.0}", "pmma", "{tilt: 0.1, spin: 200.0}"));
+  scene.initial.tilt = 1.3;
+  Simulator sim(scene);
   EXPECT_EQ(sim.fault(), ContactFault::fallen) << to_string(sim.fault());
   const Snapshot s = sim.snapshot();
   EXPECT_EQ(s.regime, Regime::contact_fault);
