@@ -43,6 +43,19 @@ double thread_cpu_seconds() {
   return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
 }
 
+namespace {
+
+// advance_to in slices of progress_interval wall seconds, reporting the time reached after each.
+void advance(Simulator& sim, double t, const RunOptions& opt) {
+  if (!opt.on_progress) {
+    sim.advance_to(t);
+    return;
+  }
+  while (!sim.advance_to(t, opt.progress_interval)) opt.on_progress(sim.time());
+}
+
+}  // namespace
+
 RunResult run(Simulator& sim, const RunOptions& opt) {
   RunResult r;
   const double t0 = sim.time();
@@ -59,7 +72,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       if (r.mode_switches.size() < Simulator::kMaxPendingSwitches) r.mode_switches.push_back(m);
   };
   auto sample = [&](double t) {
-    sim.advance_to(t);
+    advance(sim, t, opt);
     collect();
     if (opt.on_sample) opt.on_sample(sim.snapshot());
   };
@@ -70,7 +83,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       const double t = t0 + k * dt;
       if (t > t_end + 1e-9 * dt) break;
       if (!mark && t >= t_mark) {
-        sim.advance_to(t_mark);
+        advance(sim, t_mark, opt);
         collect();
         mark = position(sim.state());
       }
@@ -78,11 +91,11 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       if (sim.fault() != ContactFault::none) break;
     }
   } else {
-    sim.advance_to(t_mark);
+    advance(sim, t_mark, opt);
     collect();
     mark = position(sim.state());
   }
-  sim.advance_to(t_end);
+  advance(sim, t_end, opt);
   collect();
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.mode_switch_count = sim.mode_switch_count() - switches0;

@@ -17,6 +17,9 @@ struct RunOptions {
   double duration = 10.0;     // simulated seconds
   double sample_rate = 0.0;   // samples per simulated second for on_sample (0 = none)
   std::function<void(const Snapshot&)> on_sample;
+  // Called about every progress_interval seconds of wall time during long advances (none when empty).
+  std::function<void(double t)> on_progress;
+  double progress_interval = 1.0;
 };
 
 struct RunResult {

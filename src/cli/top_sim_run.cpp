@@ -1,15 +1,18 @@
 // top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE] [--lcm URL [--lcm-channel C]]
-// Runs one scene without ROS; exit 0 ok, 2 bad scene or argument, 3 contact fault.
+// Runs one scene without ROS; exit 0 ok, 1 output not written, 2 bad scene or argument, 3 contact or numerical fault.
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <fstream>
 #include <iostream>
 #include <memory>
 #include <string>
 #include <thread>
+#include <unistd.h>
 
 #include "run_output.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/pacing.hpp"
 #include "top_sim/scene.hpp"
 #ifdef TOP_SIM_HAVE_LCM
@@ -26,7 +29,12 @@ const char* kUsage =
     "  --rate HZ       CSV sample rate (default 100)\n"
     "  --summary FILE  write the JSON summary (- for standard output)\n"
     "  --lcm URL       stream top_sim.top_state_t in real time at --rate Hz over LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
-    "  --lcm-channel C LCM channel (default TOP_STATE)\n";
+    "  --lcm-channel C LCM channel (default TOP_STATE)\n"
+    "  --quiet         no progress line (shown on a terminal during runs longer than 1 s of wall time)\n"
+    "  --progress      progress lines even when standard error is not a terminal\n"
+    "CSV files are limited to 1e8 rows (--duration x --rate; ~20 GB).\n";
+
+constexpr double kMaxCsvRows = 1.0e8;
 
 struct BadArgument {
   std::string message;
@@ -44,6 +52,7 @@ struct Arguments {
   std::string scene_path, csv_path, summary_path, lcm_url, lcm_channel = "TOP_STATE";
   double duration = -1.0;  // < 0: the scene's
   double rate = 100.0;     // samples per simulated second
+  bool quiet = false, progress = false;
 };
 
 // Reads the command line (throws BadArgument); false when it asked for --help.
@@ -60,6 +69,10 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
       args.duration = positive_number(a, value());
     } else if (a == "--rate") {
       args.rate = positive_number(a, value());
+    } else if (a == "--quiet") {
+      args.quiet = true;
+    } else if (a == "--progress") {
+      args.progress = true;
     } else if (a == "--csv") {
       args.csv_path = value();
     } else if (a == "--summary") {
@@ -133,9 +146,16 @@ bool load(const std::string& path, top_sim::Scene& scene) {
   return true;
 }
 
-// The CSV with its header when a path is given; false (after the message) when it cannot be written.
-bool open_csv(const std::string& path, std::ofstream& csv) {
+// The CSV with its header when a path is given; false (after the message) when it cannot be written or would
+// exceed kMaxCsvRows.
+bool open_csv(const std::string& path, double duration, double rate, std::ofstream& csv) {
   if (path.empty()) return true;
+  if (duration * rate + 1.0 > kMaxCsvRows) {
+    std::cerr << "top_sim_run: --rate " << top_sim::format_number(rate) << " over --duration "
+              << top_sim::format_number(duration) << " s asks for " << top_sim::format_number(duration * rate + 1.0)
+              << " CSV rows; must be <= 1e8 rows (lower --rate or --duration)\n";
+    return false;
+  }
   csv.open(path);
   if (!csv) {
     std::cerr << "top_sim_run: --csv = '" << path << "': cannot open for writing\n";
@@ -143,6 +163,15 @@ bool open_csv(const std::string& path, std::ofstream& csv) {
   }
   top_sim::write_csv_header(csv);
   return true;
+}
+
+// "t = 12 s of 300 s (4 %)" on stderr: one line per report (a terminal sees them overwrite each other).
+std::function<void(double)> progress_printer(double t0, double duration) {
+  const bool tty = isatty(STDERR_FILENO);
+  return [t0, duration, tty](double t) {
+    std::cerr << (tty ? "\r" : "") << "top_sim_run: t = " << t - t0 << " s of " << duration << " s ("
+              << static_cast<int>(100.0 * (t - t0) / duration) << " %)" << (tty ? "   " : "\n") << std::flush;
+  };
 }
 
 // The one-line result on stdout (unless the summary goes there).
@@ -200,11 +229,14 @@ int main(int argc, char** argv) {
 
   Scene scene;
   std::ofstream csv;
-  if (!load(args.scene_path, scene) || !open_csv(args.csv_path, csv)) return 2;
+  if (!load(args.scene_path, scene)) return 2;
+  const double duration = args.duration > 0.0 ? args.duration : scene.duration;
+  if (!open_csv(args.csv_path, duration, args.rate, csv)) return 2;
 
   Simulator sim(scene);
   RunOptions opt;
-  opt.duration = args.duration > 0.0 ? args.duration : scene.duration;
+  opt.duration = duration;
+  if (args.progress || (!args.quiet && isatty(STDERR_FILENO))) opt.on_progress = progress_printer(sim.time(), duration);
   if (csv.is_open()) {
     opt.sample_rate = args.rate;
     opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
@@ -221,6 +253,7 @@ int main(int argc, char** argv) {
   }
 #endif
   const RunResult r = run(sim, opt);
+  if (opt.on_progress && isatty(STDERR_FILENO)) std::cerr << "\n";
   // Output errors surface after the simulation: exit 1 (the result could not be delivered).
   const bool written = csv_written(args.csv_path, csv) && write_summary(args.summary_path, summary_json(scene, r));
   if (args.summary_path != "-") print_result(scene, r);

@@ -276,15 +276,19 @@ void read_initial(Section& root, const std::string& file, const Model& model, In
   }
 }
 
+constexpr double kMinStep = 1.0e-12;  // [s]
+
 IntegratorSettings read_integrator(Section& root, const std::string& file) {
   Section g(root.raw("integrator"), file, "integrator");
   IntegratorSettings is;
   const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4", "switching"});
   parse_method(method, is.method);
-  is.dt = g.number("dt", is.dt, [](double v) { return v > 0.0 && v <= 10.0; }, "in (0, 10] [s]");
+  // Below 1e-12 s a step no longer changes t (double resolution at t ~ 1e4 s): a run that cannot progress.
+  is.dt = g.number("dt", is.dt, [](double v) { return v >= kMinStep && v <= 10.0; }, "in [1e-12, 10] [s]");
   is.rtol = g.number("rtol", is.rtol, [](double v) { return v > 0.0 && v < 1.0; }, "in (0, 1)");
   is.atol = g.number("atol", is.atol, positive, "> 0");
-  is.max_dt = g.number("max_dt", is.max_dt, non_negative, ">= 0 [s] (0 = unbounded)");
+  is.max_dt = g.number("max_dt", is.max_dt, [](double v) { return v == 0.0 || v >= kMinStep; },
+                       "0 (unbounded) or >= 1e-12 [s]");
   g.finish();
   return is;
 }

@@ -221,3 +221,20 @@ TEST(Cli, OutputThatCannotBeWrittenExitsOne) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(Cli, CsvLargerThanTheLimitIsRefusedBeforeRunning) {
+  const CliResult r = run_cli("'" + top_sim_test::scene_path("default") + "' --duration 10 --rate 1e9 --csv '" +
+                              in_scratch("huge.csv") + "'");
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "must be <= 1e8 rows")) << r.err;
+  EXPECT_FALSE(std::filesystem::exists(in_scratch("huge.csv")));
+}
+
+TEST(Cli, QuietAndProgressAreAccepted) {
+  const CliResult r = run_cli("'" + top_sim_test::scene_path("default") + "' --duration 1 --quiet --progress");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+}
+
+}  // namespace

@@ -3,6 +3,9 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
+
+#include "../../src/cli/run_output.hpp"
 
 #include "test_util.hpp"
 
@@ -59,6 +62,40 @@ TEST(Reliability, EnergyOverflowDuringARunIsANumericalFault) {
   EXPECT_EQ(sim.fault(), ContactFault::numerical);
   EXPECT_NE(sim.fault_message().find("numerical"), std::string::npos) << sim.fault_message();
   EXPECT_EQ(sim.snapshot().regime, Regime::contact_fault);
+}
+
+}  // namespace
+
+namespace {
+
+// dt 1e-300 (fixed step) never advanced t: refused with the floor named.
+TEST(Reliability, StepsBelowTheFloorAreABadScene) {
+  for (const char* key : {"dt", "max_dt"}) {
+    try {
+      scene_from("top: aluminium\nfriction: pmma\nintegrator: {method: rk4, " + std::string(key) + ": 1.0e-300}\n");
+      ADD_FAILURE() << key << " 1e-300 accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("integrator." + std::string(key) + ": 1e-300 is out of range"),
+                std::string::npos)
+          << e.what();
+      EXPECT_NE(std::string(e.what()).find("1e-12"), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Long runs report progress while they advance (top_sim_run prints it on a terminal or with --progress).
+TEST(Reliability, RunReportsProgressInWallClockSlices) {
+  Simulator sim(scene_from("top: aluminium\nfriction: pmma\n"));
+  RunOptions opt;
+  opt.duration = 300.0;
+  opt.progress_interval = 1e-4;  // [s] wall: a 300 s run takes ~25 ms, so many reports
+  std::vector<double> reported;
+  opt.on_progress = [&reported](double t) { reported.push_back(t); };
+  const RunResult r = run(sim, opt);
+  ASSERT_GE(reported.size(), 2u);
+  for (std::size_t i = 1; i < reported.size(); ++i) EXPECT_GT(reported[i], reported[i - 1]);
+  EXPECT_LT(reported.back(), 300.0);
+  EXPECT_EQ(r.sim_seconds, 300.0);  // slicing changes nothing in the result
 }
 
 }  // namespace

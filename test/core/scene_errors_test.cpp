@@ -79,7 +79,7 @@ TEST(SceneErrors, OutOfRangeValues) {
   expect_error(kTop + "initial: {tilt: -0.1}\n", "initial.tilt", "-0.1", "[0, pi)");
   expect_error(kTop + "initial: {start: sleeping}\n", "initial.start", "'sleeping'", "tilted | stationary");
   expect_error(kTop + "integrator: {rtol: 2}\n", "integrator.rtol", "2", "(0, 1)");
-  expect_error(kTop + "integrator: {dt: 0}\n", "integrator.dt", "0", "(0, 10]");
+  expect_error(kTop + "integrator: {dt: 0}\n", "integrator.dt", "0", "[1e-12, 10]");
   expect_error(kTop + "integrator: {method: rk45}\n", "integrator.method", "'rk45'", "dopri5");
   expect_error(kTop + "duration: -5\n", "duration", "-5", "> 0");
 }
