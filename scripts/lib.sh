@@ -58,3 +58,12 @@ top_sim_plain_build() {
   cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD" -DTOP_SIM_ROS=OFF "${TOP_SIM_CMAKE_ARGS[@]}" >/dev/null &&
     cmake --build "$TOP_SIM_BUILD" -j"$TOP_SIM_JOBS"
 }
+
+# The core's tests under AddressSanitizer + UndefinedBehaviorSanitizer: a second plain build in
+# $TOP_SIM_BUILD-sanitize (RelWithDebInfo, so a report names file and line).
+top_sim_sanitized_build() {
+  top_sim_log "AddressSanitizer + UBSan build of the core's tests in $TOP_SIM_BUILD-sanitize (-j$TOP_SIM_JOBS)"
+  cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD-sanitize" -DTOP_SIM_ROS=OFF -DTOP_SIM_PYTHON=OFF \
+    -DTOP_SIM_SANITIZE=address,undefined -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null &&
+    cmake --build "$TOP_SIM_BUILD-sanitize" -j"$TOP_SIM_JOBS" --target top_sim_core_tests top_sim_run top_sim_sweep
+}

@@ -9,6 +9,7 @@ set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
 status=0   # becomes 1 on any failure; the counts line is printed in every case
+sanitizer_failed=0
 timeout_s=${TOP_SIM_TEST_TIMEOUT:-3000}
 plain_results=$TOP_SIM_BUILD/test_results
 mkdir -p "$TOP_SIM_WS"
@@ -30,6 +31,21 @@ if [ "$status" -eq 0 ]; then
     timeout --kill-after=30 "$timeout_s" ctest --test-dir "$TOP_SIM_BUILD" --output-on-failure \
       --output-junit "$plain_results/ctest.xml" \
       || top_sim_log "ctest reported failures (listed below)"
+  fi
+fi
+
+# ---- 1b. the core's tests again under AddressSanitizer + UBSan (TOP_SIM_SANITIZERS=0 skips) ---------------------
+if [ "$status" -eq 0 ] && [ "${TOP_SIM_SANITIZERS:-1}" != 0 ]; then
+  if ! top_sim_sanitized_build; then
+    top_sim_log "SANITIZER BUILD FAILED"; status=1
+  else
+    top_sim_log "running the core's tests under AddressSanitizer + UBSan"
+    # A sanitizer report aborts the test binary: its XML is then missing or failing, and counted below.
+    mkdir -p "$plain_results/sanitized"
+    timeout --kill-after=30 "$timeout_s" "$TOP_SIM_BUILD-sanitize/bin/top_sim_core_tests" \
+      --gtest_output="xml:$plain_results/sanitized/core_tests_asan_ubsan.xml" >"$plain_results/sanitized/log.txt" 2>&1 \
+      || { top_sim_log "SANITIZED CORE TESTS FAILED (last lines of the log:)"; tail -40 "$plain_results/sanitized/log.txt" >&2
+           sanitizer_failed=1; }   # the ROS stage still runs; the verdict below counts this
   fi
 fi
 
@@ -66,6 +82,7 @@ if [ "$status" -eq 0 ]; then
   fi
 fi
 
+[ "$sanitizer_failed" -eq 0 ] || status=1
 set +e
 /usr/bin/python3 - "$status" "$plain_results" "$results" <<'PY'
 # Counts test cases in the JUnit XML files of catkin's test_results directory.
