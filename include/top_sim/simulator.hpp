@@ -30,6 +30,7 @@ struct SampleAnalysis {
   Dynamics dynamics;
   StationaryState stationary;
   RegimeIndicators indicators;
+  double energy = 0.0;  // mechanical energy E [J]
 };
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y);

@@ -6,11 +6,11 @@
 #include <algorithm>
 #include <cfloat>
 #include <cmath>
+#include <filesystem>
 #include <functional>
 #include <optional>
 #include <set>
 #include <sstream>
-#include <sys/stat.h>
 
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/contact_modes.hpp"
@@ -26,8 +26,8 @@ SceneError::SceneError(const std::string& f, const std::string& k, const std::st
 namespace {
 
 bool is_dir(const std::string& path) {
-  struct stat st {};
-  return stat(path.c_str(), &st) == 0 && S_ISDIR(st.st_mode);
+  std::error_code ec;
+  return std::filesystem::is_directory(path, ec);
 }
 
 std::string join(const std::string& path, const std::string& key) { return path.empty() ? key : path + "." + key; }

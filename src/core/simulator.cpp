@@ -403,10 +403,10 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
 
 // The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
 void Simulator::update_sample() {
-  // A finite state whose energy overflows (speeds ~1e154 m/s and up) is no answer either.
-  if (fault_ == ContactFault::none && !std::isfinite(mechanical_energy(model_, y_)))
-    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (the energy overflowed)");
   sample_ = analyse_sample(model_, mode_, y_);
+  // A finite state whose energy overflows (speeds ~1e154 m/s and up) is no answer either.
+  if (fault_ == ContactFault::none && !std::isfinite(sample_.energy))
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (the energy overflowed)");
   regime_ = fault_ != ContactFault::none ? Regime::contact_fault
                                          : classify(model_.regime, sample_.indicators, false, regime_);
 }
@@ -425,6 +425,7 @@ SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateV
   evaluate_dynamics(model, mode, y, a.dynamics);
   a.stationary = stationary_state(model, shell_spin(y));
   if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, a.stationary);
+  a.energy = mechanical_energy(model, y);
   return a;
 }
 
@@ -477,7 +478,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
   }
   s.regime = regime;
-  s.energy = mechanical_energy(model, y);
+  s.energy = analysis.energy;
   s.dissipated_work = y[idx::w_diss];
   s.energy_balance_residual = balance.residual(model, y);
   return s;

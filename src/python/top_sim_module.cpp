@@ -7,10 +7,9 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
+#include <filesystem>
 #include <memory>
 #include <mutex>
-#include <sstream>
-#include <sys/stat.h>
 
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -40,18 +39,14 @@ YAML::Node to_yaml(const py::handle& value) {
   }
   if (value.is_none()) return YAML::Node(YAML::NodeType::Null);
   if (py::isinstance<py::bool_>(value)) return YAML::Node(value.cast<bool>() ? "true" : "false");
-  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
-    std::ostringstream os;
-    os.precision(17);
-    os << value.cast<double>();  // 17 digits: the number reads back exactly
-    return YAML::Node(os.str());
-  }
+  if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value))
+    return YAML::Node(format_number(value.cast<double>()));  // reads back as the same double
   return YAML::Node(py::str(value).cast<std::string>());
 }
 
 bool is_file(const std::string& path) {
-  struct stat st {};
-  return stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+  std::error_code ec;
+  return std::filesystem::is_regular_file(path, ec);
 }
 
 // A path, a scene name of the data directory ("default" -> <config>/scenes/default.yaml), or a dict.
@@ -68,15 +63,11 @@ Scene scene_from(const py::object& source) {
 
 // ---- values -----------------------------------------------------------------------------------------------
 
-py::array_t<double> array(const Eigen::Ref<const Eigen::VectorXd>& v) {
-  py::array_t<double> a(v.size());
-  for (Eigen::Index i = 0; i < v.size(); ++i) a.mutable_at(i) = v[i];
-  return a;
-}
-
-py::array_t<double> array(const StateVector& y) {
-  py::array_t<double> a(static_cast<py::ssize_t>(y.size()));
-  for (std::size_t i = 0; i < y.size(); ++i) a.mutable_at(i) = y[i];
+// A NumPy copy of any indexable vector (Eigen vectors, the StateVector).
+template <class V>
+py::array_t<double> array(const V& v) {
+  py::array_t<double> a(static_cast<py::ssize_t>(v.size()));
+  for (py::ssize_t i = 0; i < a.size(); ++i) a.mutable_at(i) = v[i];
   return a;
 }
 
@@ -207,24 +198,13 @@ class PySimulator {
 
   py::dict step_to(double t) {
     auto lock = own();
-    if (!std::isfinite(t) || t < sim_->time())
-      throw py::value_error("t = " + format_number(t) + ": must be finite and >= the current time " +
-                            format_number(sim_->time()) + " [s]");
-    {
-      py::gil_scoped_release release;
-      sim_->advance_to(t);
-    }
-    return snapshot_dict(sim_->snapshot());
+    return advance(t);
   }
 
   py::dict run(double duration) {
     check_duration(duration);
-    double t_end;
-    {
-      auto lock = own();
-      t_end = sim_->time() + duration;
-    }
-    return step_to(t_end);
+    auto lock = own();  // one ownership for reading the time and advancing: no other thread in between
+    return advance(sim_->time() + duration);
   }
 
   // Samples every 1/rate from now to now + duration (both included); stops early at a contact fault.
@@ -272,6 +252,18 @@ class PySimulator {
   }
 
  private:
+  // Advances to t (the caller owns the simulator) with the GIL released; returns the snapshot.
+  py::dict advance(double t) {
+    if (!std::isfinite(t) || t < sim_->time())
+      throw py::value_error("t = " + format_number(t) + ": must be finite and >= the current time " +
+                            format_number(sim_->time()) + " [s]");
+    {
+      py::gil_scoped_release release;
+      sim_->advance_to(t);
+    }
+    return snapshot_dict(sim_->snapshot());
+  }
+
   static void check_duration(double duration) {
     if (!std::isfinite(duration) || duration < 0.0)
       throw py::value_error("duration = " + format_number(duration) + ": must be finite and >= 0 [s]");

@@ -57,7 +57,9 @@ TEST(Reliability, InitialStateWithInfiniteEnergyIsABadScene) {
 TEST(Reliability, EnergyOverflowDuringARunIsANumericalFault) {
   Simulator sim(scene_from(scene_text("aluminium", "{tilt: 0.1, spin: 200.0}")));
   sim.advance_to(0.1);
-  ASSERT_EQ(sim.submit(Command{std::nullopt, 1.0e200}), "");
+  Command spin_up;
+  spin_up.spin = 1.0e200;
+  ASSERT_EQ(sim.submit(spin_up), "");
   sim.advance_to(0.2);
   EXPECT_EQ(sim.fault(), ContactFault::numerical);
   EXPECT_NE(sim.fault_message().find("numerical"), std::string::npos) << sim.fault_message();
