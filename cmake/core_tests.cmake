@@ -2,8 +2,6 @@
 # The catkin build (TOP_SIM_ROS) runs the ROS tests only (cmake/ros.cmake); scripts/test.sh runs both builds.
 if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   find_package(GTest REQUIRED)
-  # JUnit XML of every suite goes here (scripts/test.sh counts the cases).
-  set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
   file(GLOB TOP_SIM_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
   add_executable(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
   target_link_libraries(top_sim_core_tests top_sim_cli_common GTest::gtest GTest::gtest_main)
@@ -20,7 +18,7 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   # Another CMake project links the installed core through find_package(top_sim_core).
   add_test(NAME install_and_find_package COMMAND ${CMAKE_COMMAND}
     -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}
-    -DRESULTS=${TOP_SIM_TEST_RESULTS} -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)
+    -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)
 endif()
 
 find_package(benchmark QUIET)

@@ -17,6 +17,8 @@ else()
   set(TOP_SIM_INSTALL_INCLUDE ${CMAKE_INSTALL_INCLUDEDIR})
   set(TOP_SIM_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME})
   enable_testing()
+  # JUnit XML of every plain-build test suite goes here (scripts/test.sh counts the cases).
+  set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
 endif()
 set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)

@@ -13,7 +13,6 @@ set_target_properties(top_sim_python PROPERTIES OUTPUT_NAME top_sim
   LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/python)
 
 if(TOP_SIM_TESTS)
-  set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
   add_test(NAME python_tests
     COMMAND ${Python3_EXECUTABLE} -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python
             --junitxml=${TOP_SIM_TEST_RESULTS}/python_tests.xml)

@@ -6,9 +6,8 @@
 #include <sstream>
 #include <utility>
 
-#include "top_sim/trajectory.hpp"
-
 #include "top_sim/plane.hpp"
+#include "top_sim/trajectory.hpp"
 
 namespace top_sim {
 
@@ -71,9 +70,12 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
     for (const ModeSwitch& m : sim.take_mode_switches())
       if (r.mode_switches.size() < Simulator::kMaxPendingSwitches) r.mode_switches.push_back(m);
   };
-  auto sample = [&](double t) {
+  auto advance_to = [&](double t) {  // every advance of the run keeps its mode switches
     advance(sim, t, opt);
     collect();
+  };
+  auto sample = [&](double t) {
+    advance_to(t);
     if (opt.on_sample) opt.on_sample(sim.snapshot());
   };
   if (opt.sample_rate > 0.0 && opt.on_sample) {
@@ -83,20 +85,17 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       const double t = t0 + k * dt;
       if (t > t_end + 1e-9 * dt) break;
       if (!mark && t >= t_mark) {
-        advance(sim, t_mark, opt);
-        collect();
+        advance_to(t_mark);
         mark = position(sim.state());
       }
       sample(t);
       if (sim.fault() != ContactFault::none) break;
     }
   } else {
-    advance(sim, t_mark, opt);
-    collect();
+    advance_to(t_mark);
     mark = position(sim.state());
   }
-  advance(sim, t_end, opt);
-  collect();
+  advance_to(t_end);
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   r.mode_switch_count = sim.mode_switch_count() - switches0;
   const std::array<double, kContactModeCount> seconds1 = sim.mode_seconds();
