@@ -1,4 +1,4 @@
-// top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE] [--lcm URL [--lcm-channel C]]
+// top_sim_run SCENE.yaml [options]: see kUsage below and docs/interfaces.md.
 // Runs one scene without ROS; exit 0 ok, 1 output not written, 2 bad scene or argument, 3 contact or numerical fault.
 #include <chrono>
 #include <cmath>
@@ -23,7 +23,7 @@ namespace {
 
 const char* kUsage =
     "usage: top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE|-]\n"
-    "                   [--lcm URL [--lcm-channel NAME]]\n"
+    "                   [--lcm URL [--lcm-channel NAME]] [--quiet] [--progress]\n"
     "  --duration S    simulated seconds (default: the scene's duration)\n"
     "  --csv FILE      write the state at --rate samples per simulated second\n"
     "  --rate HZ       CSV sample rate (default 100)\n"
