@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "top_sim/limits.hpp"
 #include "top_sim/state.hpp"
 
 namespace top_sim {
@@ -24,6 +25,8 @@ struct IntegratorSettings {
   double rtol = 1.0e-8;
   double atol = 1.0e-10;
   double max_dt = 0.0;  // upper bound on adaptive steps [s]; 0 = none
+  // The run stops with a numerical fault when the relative energy-balance residual exceeds this (inf = never).
+  double max_energy_residual = kDefaultMaxEnergyResidual;
 };
 
 using System = std::function<void(const StateVector&, StateVector&)>;

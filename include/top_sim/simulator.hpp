@@ -91,6 +91,7 @@ class Simulator {
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
+  void stop_at_step_start(const std::string& detail);
   void update_sample();
   bool in_stiff_layer(const StateVector& y, bool inside) const;
 

@@ -48,4 +48,8 @@ struct Snapshot {
   std::string fault_message;
 };
 
+// True when every number of the snapshot is finite. The Simulator keeps its snapshots finite (a numerical fault
+// stops at the last finite state); adapters check again before publishing.
+bool all_finite(const Snapshot& s);
+
 }  // namespace top_sim

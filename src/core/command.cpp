@@ -7,6 +7,7 @@
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/limits.hpp"
 
 namespace top_sim {
 
@@ -23,10 +24,11 @@ std::string validate(const Command& c, const Model& model) {
     const double a = *c.inclination;
     if (!std::isfinite(a) || std::abs(a) >= M_PI / 2) return bad("inclination", a, "finite with |alpha| < pi/2 rad");
   }
-  if (c.spin && !std::isfinite(*c.spin)) return bad("spin", *c.spin, "finite [rad/s]");
+  static const std::string spin_range = "finite with |spin| <= " + format_number(kMaxSpin) + " [rad/s] (top_sim's spin limit)";
+  if (c.spin && !(std::abs(*c.spin) <= kMaxSpin)) return bad("spin", *c.spin, spin_range.c_str());
   if (c.rotor_spin) {
     if (!model.top.has_rotor) return "rotor_spin: this top has no rotor (top.rotor is not configured)";
-    if (!std::isfinite(*c.rotor_spin)) return bad("rotor_spin", *c.rotor_spin, "finite [rad/s]");
+    if (!(std::abs(*c.rotor_spin) <= kMaxSpin)) return bad("rotor_spin", *c.rotor_spin, spin_range.c_str());
   }
   if (c.rotor_coupling) {
     if (!model.top.has_rotor) return "rotor_coupling: this top has no rotor (top.rotor is not configured)";

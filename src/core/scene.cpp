@@ -16,6 +16,7 @@
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/limits.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {
@@ -139,6 +140,8 @@ class Section {
 const auto positive = [](double v) { return v > 0.0; };
 const auto non_negative = [](double v) { return v >= 0.0; };
 const auto finite = [](double) { return true; };
+const auto spin_range = [](double v) { return std::abs(v) <= kMaxSpin; };
+const std::string kSpinRange = "in [-" + format_number(kMaxSpin) + ", " + format_number(kMaxSpin) + "] [rad/s] (top_sim's spin limit)";
 
 // `top:` and `friction:` may name a file in <config>/tops or <config>/planes instead of giving a mapping.
 YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std::string& key,
@@ -186,7 +189,7 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
                                        "in (0, top.inertia_axial = " + fmt(I_f) + ") [kg m^2]");
     if (!r.has("inertia_axial")) throw SceneError(file, "top.rotor.inertia_axial", "required when top.rotor is given");
     top.rotor.coupling = r.number("coupling", 0.0, non_negative, ">= 0 [N m s]");
-    rotor_spin = r.number("spin", 0.0, finite, "a finite number [rad/s]");
+    rotor_spin = r.number("spin", 0.0, spin_range, kSpinRange);
     r.finish();
   }
   s.finish();
@@ -256,7 +259,7 @@ void read_initial(Section& root, const std::string& file, const Model& model, In
   ic.start = i.word("start", "tilted", {"tilted", "stationary"}) == "stationary" ? StartKind::stationary : StartKind::tilted;
   ic.tilt = i.number("tilt", ic.tilt, [](double v) { return v >= 0.0 && v < M_PI; }, "in [0, pi) [rad]");
   ic.tilt_azimuth = i.number("tilt_azimuth", ic.tilt_azimuth, finite, "a finite number [rad]");
-  ic.spin = i.number("spin", ic.spin, finite, "a finite number [rad/s]");
+  ic.spin = i.number("spin", ic.spin, spin_range, kSpinRange);
   ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
   ic.position = i.pair("position", ic.position);
   ic.velocity = i.pair("velocity", ic.velocity);
@@ -276,8 +279,6 @@ void read_initial(Section& root, const std::string& file, const Model& model, In
   }
 }
 
-constexpr double kMinStep = 1.0e-12;  // [s]
-
 IntegratorSettings read_integrator(Section& root, const std::string& file) {
   Section g(root.raw("integrator"), file, "integrator");
   IntegratorSettings is;
@@ -289,6 +290,8 @@ IntegratorSettings read_integrator(Section& root, const std::string& file) {
   is.atol = g.number("atol", is.atol, positive, "> 0");
   is.max_dt = g.number("max_dt", is.max_dt, [](double v) { return v == 0.0 || v >= kMinStep; },
                        "0 (unbounded) or >= 1e-12 [s]");
+  is.max_energy_residual = g.number("max_energy_residual", is.max_energy_residual, positive,
+                                    "> 0 (relative drift of E + W_diss that stops the run; 1e300 = never)");
   g.finish();
   return is;
 }
@@ -305,8 +308,8 @@ ScriptedEvent read_event(const YAML::Node& node, const std::string& file, const 
   last_t = event.t;
   Command& c = event.command;
   if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, [](double v) { return std::abs(v) < M_PI / 2; }, "in (-pi/2, pi/2) [rad]");
-  if (e.has("spin")) c.spin = e.number("spin", 0.0, finite, "a finite number [rad/s]");
-  if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, finite, "a finite number [rad/s]");
+  if (e.has("spin")) c.spin = e.number("spin", 0.0, spin_range, kSpinRange);
+  if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, spin_range, kSpinRange);
   if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
   e.finish();
   if (c.empty()) throw SceneError(file, path, "changes nothing (give inclination, spin, rotor_spin or rotor_coupling)");

@@ -141,6 +141,19 @@ void Simulator::restart_stepper(bool rebase_energy) {
   }
 }
 
+// A numerical fault in the last step: the state goes back to the step's start (or stays at the last committed
+// state when even that interpolates to non-finite values), so snapshots stay finite after the fault.
+void Simulator::stop_at_step_start(const std::string& detail) {
+  StateVector y0;
+  const double t0 = stepper_->previous_time();
+  stepper_->state_at(t0, y0);
+  if (all_finite(y0) && std::isfinite(mechanical_energy(model_, y0))) {
+    y_ = y0;
+    t_ = t0;
+  }
+  fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + detail);
+}
+
 void Simulator::fail(ContactFault fault, const std::string& message) {
   if (fault_ != ContactFault::none) return;
   fault_ = fault;
@@ -232,9 +245,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
         }
         stepper_->step(t_stop);
         if (!all_finite(stepper_->state())) {
-          t_ = stepper_->previous_time();
-          stepper_->state_at(t_, y_);
-          fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
+          stop_at_step_start("");
           break;
         }
       }
@@ -274,7 +285,14 @@ bool Simulator::scan_events(double t_end) {
   const double t0 = scanned_;
   StateVector y1;
   if (t_end >= stepper_->time()) y1 = stepper_->state(); else stepper_->state_at(t_end, y1);
-  max_residual_ = std::max(max_residual_, balance_.residual(model_, y1));
+  const double residual = balance_.residual(model_, y1);
+  max_residual_ = std::max(max_residual_, residual);
+  if (!(residual <= scene_.integrator.max_energy_residual)) {  // an unstable step: its events would be fiction
+    stop_at_step_start(" (the energy balance drifted by " + format_number(residual) + " of the energy scale, over " +
+                       "integrator.max_energy_residual = " + format_number(scene_.integrator.max_energy_residual) +
+                       ": the step is unstable)");
+    return false;
+  }
   if (model_.kind != ModelKind::full) {
     scanned_ = t_end;
     return true;

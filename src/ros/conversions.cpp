@@ -10,7 +10,6 @@ namespace top_sim_ros {
 
 namespace {
 
-bool finite3(const Eigen::Vector3d& v) { return v.allFinite(); }
 
 geometry_msgs::Point point(const Eigen::Vector3d& v) {
   geometry_msgs::Point p;
@@ -94,16 +93,6 @@ void add_arrows(const top_sim::Snapshot& s, const std::string& frame, const ros:
 }
 
 }  // namespace
-
-bool all_finite(const top_sim::Snapshot& s) {
-  const double scalars[] = {s.t, s.alpha, s.spin, s.rotor_spin, s.spin_phase, s.slip, s.mu, s.normal_force, s.phi,
-                            s.phi_star, s.gap, s.energy, s.dissipated_work, s.energy_balance_residual};
-  for (double v : scalars)
-    if (!std::isfinite(v)) return false;
-  return finite3(s.tip_center) && finite3(s.com) && s.orientation.coeffs().allFinite() && finite3(s.com_velocity) &&
-         finite3(s.tip_velocity) && finite3(s.contact_point) && finite3(s.figure_axis) &&
-         finite3(s.angular_velocity) && finite3(s.friction_force);
-}
 
 // The message's constants are the core's codes (msg/TopState.msg keeps their values).
 static_assert(top_sim::TopState::NUTATING == top_sim::code(top_sim::Regime::nutating), "TopState regime code");

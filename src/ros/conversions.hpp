@@ -20,9 +20,6 @@ struct Frames {
   std::string top = "top";
 };
 
-// True when every number the messages carry is finite (no NaN may reach a message).
-bool all_finite(const top_sim::Snapshot& s);
-
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out);
 

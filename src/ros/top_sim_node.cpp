@@ -278,7 +278,7 @@ class TopSimNode {
   // ---- output -------------------------------------------------------------------------------------------------
   void publish(double wall) {
     const top_sim::Snapshot s = sim_->snapshot();
-    if (!top_sim_ros::all_finite(s)) {
+    if (!top_sim::all_finite(s)) {
       ROS_ERROR_THROTTLE(1.0, "top_sim_node: non-finite state at t = %g s: not published (call ~reset)", s.t);
       return;
     }

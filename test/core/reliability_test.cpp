@@ -6,6 +6,8 @@
 #include <vector>
 
 #include "../../src/cli/run_output.hpp"
+#include "top_sim/format.hpp"
+#include "top_sim/limits.hpp"
 
 #include "test_util.hpp"
 
@@ -53,17 +55,64 @@ TEST(Reliability, InitialStateWithInfiniteEnergyIsABadScene) {
   }
 }
 
-// A command can take the energy past double range; the run stops with a named numerical fault, not NaN.
-TEST(Reliability, EnergyOverflowDuringARunIsANumericalFault) {
+// A spin of 1e308 was accepted, overflowed the energy and left the node silent: spins are limited to kMaxSpin, in
+// scenes and in commands alike, and a refused command leaves the state untouched.
+TEST(Reliability, SpinsBeyondTheLimitAreRefused) {
   Simulator sim(scene_from(scene_text("aluminium", "{tilt: 0.1, spin: 200.0}")));
   sim.advance_to(0.1);
-  Command spin_up;
-  spin_up.spin = 1.0e200;
-  ASSERT_EQ(sim.submit(spin_up), "");
-  sim.advance_to(0.2);
-  EXPECT_EQ(sim.fault(), ContactFault::numerical);
-  EXPECT_NE(sim.fault_message().find("numerical"), std::string::npos) << sim.fault_message();
-  EXPECT_EQ(sim.snapshot().regime, Regime::contact_fault);
+  const StateVector before = sim.state();
+  for (double spin : {1.0e308, -2.0e6, 1.0e200}) {
+    Command spin_up;
+    spin_up.spin = spin;
+    const std::string error = sim.submit(spin_up);
+    EXPECT_NE(error.find("spin = " + format_number(spin) + ": must be finite with |spin| <= 1e+06"), std::string::npos)
+        << error;
+  }
+  sim.advance_to(0.1);
+  EXPECT_EQ(sim.state(), before);
+  Command at_limit;
+  at_limit.spin = kMaxSpin;
+  EXPECT_EQ(sim.submit(at_limit), "");
+  try {
+    scene_from(scene_text("aluminium", "{tilt: 0.1, spin: 1.5e6}"));
+    ADD_FAILURE() << "initial.spin 1.5e6 accepted";
+  } catch (const SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("initial.spin: 1500000 is out of range; must be in [-1e+06, 1e+06]"),
+              std::string::npos) << e.what();
+  }
+}
+
+// An unstable fixed step invents energy; its lift-offs and falls were reported as physics (euler dt 0.01: "fallen";
+// semi-implicit Euler dt 1e-3 on the hopping top: exit 0 with a residual of 433). It is a numerical fault now,
+// stopped at the last step whose energy balance held, with a finite snapshot.
+std::string unstable_scene(const std::string& contact, const std::string& spin, const std::string& integrator) {
+  return "top: aluminium\nplane: {inclination: 0.1}\nfriction: pmma\ncontact: " + contact +
+         "\ninitial: {start: tilted, tilt: 0.1, spin: " + spin + "}\nintegrator: " + integrator + "\n";
+}
+
+TEST(Reliability, UnstableFixedStepIsANumericalFault) {
+  for (const std::string& text : {unstable_scene("{}", "200.0", "{method: euler, dt: 0.01}"),
+                                  unstable_scene("{restitution: 0.5}", "5000.0", "{method: semi_implicit_euler, dt: 1.0e-3}"),
+                                  unstable_scene("{restitution: 0.5}", "5000.0", "{method: rk4, dt: 0.01}")}) {
+    Simulator sim(scene_from(text));
+    sim.advance_to(0.5);
+    EXPECT_EQ(sim.fault(), ContactFault::numerical) << text << sim.fault_message();
+    EXPECT_NE(sim.fault_message().find("the energy balance drifted by"), std::string::npos) << sim.fault_message();
+    const Snapshot s = sim.snapshot();
+    EXPECT_TRUE(all_finite(s)) << text;
+    EXPECT_LE(s.energy_balance_residual, kDefaultMaxEnergyResidual) << text;
+    EXPECT_EQ(s.regime, Regime::contact_fault);
+  }
+}
+
+// The bound is a scene key: who studies the unstable regime on purpose raises it, and gets the old behaviour.
+TEST(Reliability, EnergyResidualBoundIsASceneKey) {
+  Simulator sim(scene_from(
+      unstable_scene("{}", "200.0", "{method: euler, dt: 0.01, max_energy_residual: 1.0e300}")));
+  sim.advance_to(0.5);
+  EXPECT_EQ(sim.fault(), ContactFault::fallen) << sim.fault_message();
+  EXPECT_GT(sim.max_energy_residual(), 1.0);
+  EXPECT_THROW(scene_from(unstable_scene("{}", "200.0", "{method: euler, max_energy_residual: 0}")), SceneError);
 }
 
 }  // namespace
