@@ -11,4 +11,4 @@ WS=${TOP_SIM_WS:-$REPO/.catkin_ws}
 set +u  # setup.bash reads unset variables
 source "$WS/devel/setup.bash"
 set -u
-exec roslaunch top_sim top_sim.launch rviz:=false "$@"
+exec "$REPO/scripts/top_sim_launch" top_sim.launch rviz:=false "$@"  # roslaunch with the node's exit status

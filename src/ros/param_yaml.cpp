@@ -2,6 +2,8 @@
 
 #include <stdexcept>
 
+#include "top_sim/friction.hpp"
+
 namespace top_sim_ros {
 
 YAML::Node to_yaml(XmlRpc::XmlRpcValue& v, const std::string& where) {
@@ -31,6 +33,47 @@ YAML::Node scene_yaml(XmlRpc::XmlRpcValue& tree, const std::set<std::string>& dr
   for (auto& kv : tree)
     if (!drop.count(kv.first)) map[kv.first] = to_yaml(kv.second, where + "/" + kv.first);
   return map;
+}
+
+const std::set<std::string>& reconfigure_physics_keys() {
+  static const std::set<std::string> keys = [] {
+    std::set<std::string> k = {"alpha", "spin", "friction_law"};
+    for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) k.insert(p.name);
+    return k;
+  }();
+  return keys;
+}
+
+namespace {
+double number(XmlRpc::XmlRpcValue& v, const std::string& where) {
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  throw std::runtime_error(where + " = " + v.toXml() + ": must be a number");
+}
+}  // namespace
+
+top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& model, const std::string& where) {
+  top_sim::Command c;
+  if (tree.getType() != XmlRpc::XmlRpcValue::TypeStruct) return c;
+  if (tree.hasMember("alpha")) c.inclination = number(tree["alpha"], where + "/alpha");
+  if (tree.hasMember("spin")) c.spin = number(tree["spin"], where + "/spin");
+  top_sim::FrictionLaw law = model.friction;
+  bool friction = false;
+  if (tree.hasMember("friction_law")) {
+    XmlRpc::XmlRpcValue& v = tree["friction_law"];
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeString ||
+        !top_sim::parse_friction_law_kind(static_cast<std::string>(v), law.kind))
+      throw std::runtime_error(where + "/friction_law = " + v.toXml() + ": must be one of " +
+                               top_sim::friction_law_names(", "));
+    friction = true;
+  }
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+    if (!tree.hasMember(p.name)) continue;
+    law.*p.member = number(tree[p.name], where + "/" + p.name);
+    friction = true;
+  }
+  if (friction) c.friction = law;
+  return c;
 }
 
 }  // namespace top_sim_ros

@@ -6,6 +6,9 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 #include <yaml-cpp/yaml.h>
 
+#include "top_sim/command.hpp"
+#include "top_sim/model.hpp"
+
 namespace top_sim_ros {
 
 // Converts a value; throws std::runtime_error naming `where` for types YAML cannot hold (dates, binary).
@@ -13,5 +16,13 @@ YAML::Node to_yaml(XmlRpc::XmlRpcValue& value, const std::string& where);
 
 // The struct `tree` as a YAML map without the keys in `drop` (the node's own parameters).
 YAML::Node scene_yaml(XmlRpc::XmlRpcValue& tree, const std::set<std::string>& drop, const std::string& where);
+
+// The keys of cfg/TopSim.cfg that change the physics (alpha, spin, friction_law and the friction parameters).
+const std::set<std::string>& reconfigure_physics_keys();
+
+// Values of those keys found in `tree` at start (set by the user, or left by dynamic_reconfigure) as one command
+// over `model`'s friction law; throws std::runtime_error naming the parameter when one is not a number or a law.
+// The caller validates the command through the core like any other.
+top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& model, const std::string& where);
 
 }  // namespace top_sim_ros

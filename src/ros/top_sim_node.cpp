@@ -33,17 +33,20 @@
 
 namespace {
 
-// Parameters of the node itself and of dynamic_reconfigure (with the friction laws' parameters): everything else
-// under ~ is the scene.
+// The node's own parameters (publish_rate and real_time_factor are dynamic_reconfigure's too). Everything else
+// under ~ is either a physics key of dynamic_reconfigure (top_sim_ros::reconfigure_physics_keys) or the scene.
 std::set<std::string> node_keys() {
-  std::set<std::string> keys = {"publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame",
-                                "top_frame",    "path_length",      "lcm_url",       "lcm_channel", "marker_rate",
-                                "path_rate",    "path_resolution",  "config_dir",    "scene_file",  "alpha",
-                                "spin",         "friction_law"};
-  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) keys.insert(p.name);
-  return keys;
+  return {"publish_rate", "real_time_factor", "publish_clock", "world_frame", "plane_frame", "top_frame",
+          "path_length",  "lcm_url",          "lcm_channel",   "marker_rate", "path_rate",  "path_resolution",
+          "config_dir",   "scene_file"};
 }
 const std::set<std::string> kNodeKeys = node_keys();
+
+std::set<std::string> union_of(const std::set<std::string>& a, const std::set<std::string>& b) {
+  std::set<std::string> u = a;
+  u.insert(b.begin(), b.end());
+  return u;
+}
 
 constexpr double kMaxPublishRate = 10000.0;
 
@@ -76,6 +79,11 @@ class TopSimNode {
       return false;
     for (const auto& w : scene_.warnings) ROS_WARN("top_sim_node: %s", w.c_str());
     sim_ = std::make_unique<top_sim::Simulator>(scene_);
+    if (!start_command_.empty()) {
+      sim_->submit(start_command_);  // validated in read_scene()
+      ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s applied at t = 0 (reset returns to the "
+               "scene's)", pnh_.getNamespace().c_str());
+    }
     advertise();
     if (!lcm_url.empty()) open_lcm(lcm_url, lcm_channel);
 
@@ -154,22 +162,46 @@ class TopSimNode {
     return true;
   }
 
-  // The scene from the private parameters other than the node's; false (after a fatal log) when it is bad.
+  // The scene: from `scene_file` through the core's loader, exactly as top_sim_run reads it (duplicate keys, number
+  // syntax and all), or else from the private parameters other than the node's. dynamic_reconfigure's physics keys
+  // found at start become a command applied at t = 0. False (after a fatal log) when anything is bad.
   bool read_scene(const std::string& config_dir, const std::string& scene_file) {
-    const std::string where = pnh_.getNamespace() + (scene_file.empty() ? "" : " (" + scene_file + ")");
+    const std::string ns = pnh_.getNamespace();
     try {
       XmlRpc::XmlRpcValue tree;
-      ros::param::get(pnh_.getNamespace(), tree);
-      const YAML::Node yaml = top_sim_ros::scene_yaml(tree, kNodeKeys, pnh_.getNamespace());
-      scene_ = top_sim::parse_scene(yaml, where, config_dir);
+      ros::param::get(ns, tree);
+      const std::set<std::string> not_scene = union_of(kNodeKeys, top_sim_ros::reconfigure_physics_keys());
+      const YAML::Node yaml = top_sim_ros::scene_yaml(tree, not_scene, ns);
+      if (scene_file.empty()) {
+        scene_ = top_sim::parse_scene(yaml, ns, config_dir);
+      } else if (yaml.size() > 0) {
+        ROS_FATAL("top_sim_node: the scene comes from one place: %s/scene_file = '%s' and scene parameters under %s "
+                  "(%s); put them in the file, or drop scene_file", ns.c_str(), scene_file.c_str(), ns.c_str(),
+                  key_list(yaml).c_str());
+        return false;
+      } else {
+        scene_ = top_sim::load_scene(scene_file);
+      }
+      start_command_ = top_sim_ros::start_command(tree, scene_.model, ns);
     } catch (const top_sim::SceneError& e) {
       ROS_FATAL("top_sim_node: bad scene: %s", e.what());
       return false;
     } catch (const std::exception& e) {
-      ROS_FATAL("top_sim_node: bad scene parameters: %s", e.what());
+      ROS_FATAL("top_sim_node: bad parameter: %s", e.what());
+      return false;
+    }
+    const std::string error = top_sim::validate(start_command_, scene_.model);
+    if (!error.empty()) {
+      ROS_FATAL("top_sim_node: bad dynamic_reconfigure parameter under %s at start: %s", ns.c_str(), error.c_str());
       return false;
     }
     return true;
+  }
+
+  static std::string key_list(const YAML::Node& map) {
+    std::string out;
+    for (const auto& kv : map) out += (out.empty() ? "" : ", ") + kv.first.as<std::string>();
+    return out;
   }
 
   void advertise() {
@@ -209,11 +241,13 @@ class TopSimNode {
 
   void start_reconfigure() {
     reconfigure_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(reconfigure_mutex_, pnh_);
-    config_.alpha = scene_.model.plane.inclination;
-    config_.spin = scene_.initial.spin;
+    // The values in force: the scene's, or dynamic_reconfigure's found at start.
+    const top_sim::Command& c = start_command_;
+    config_.alpha = c.inclination ? *c.inclination : scene_.model.plane.inclination;
+    config_.spin = c.spin ? *c.spin : scene_.initial.spin;
     config_.real_time_factor = real_time_factor_;
     config_.publish_rate = publish_rate_;
-    friction_to_config(scene_.model.friction, config_);
+    friction_to_config(c.friction ? *c.friction : scene_.model.friction, config_);
     reconfigure_->updateConfig(config_);
     reconfigure_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
 
@@ -568,6 +602,7 @@ class TopSimNode {
 
   ros::NodeHandle nh_, pnh_;
   top_sim::Scene scene_;
+  top_sim::Command start_command_;  // dynamic_reconfigure's values found at start
   std::unique_ptr<top_sim::Simulator> sim_;
   top_sim_ros::Frames frames_;
   double publish_rate_ = 200.0, real_time_factor_ = 1.0, marker_rate_ = 30.0, path_rate_ = 10.0;

@@ -125,12 +125,12 @@ TEST(Transforms, PlaneIsTiltedByAlphaAboutXAndUphillRises) {
 
 TEST(Snapshot, NonFiniteValuesAreDetected) {
   top_sim::Snapshot s;
-  EXPECT_TRUE(top_sim_ros::all_finite(s));
+  EXPECT_TRUE(top_sim::all_finite(s));
   s.friction_force.y() = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(top_sim_ros::all_finite(s));
+  EXPECT_FALSE(top_sim::all_finite(s));
   s.friction_force.y() = 0.0;
   s.mu = std::numeric_limits<double>::infinity();
-  EXPECT_FALSE(top_sim_ros::all_finite(s));
+  EXPECT_FALSE(top_sim::all_finite(s));
 }
 
 TEST(TopStateMsg, RegimeConstantsMatchTheCore) {
@@ -170,7 +170,7 @@ TEST(TopStateMsg, ContactModeAndGapAreMapped) {
   }
   top_sim::Snapshot s;
   s.gap = std::numeric_limits<double>::quiet_NaN();
-  EXPECT_FALSE(top_sim_ros::all_finite(s)) << "a NaN gap must not be published";
+  EXPECT_FALSE(top_sim::all_finite(s)) << "a NaN gap must not be published";
 }
 
 TEST(Markers, ContactModeShowsAsBodyColourAndText) {

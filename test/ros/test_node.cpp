@@ -12,6 +12,7 @@
 #include <mutex>
 #include <vector>
 
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <rosgraph_msgs/Log.h>
 #include <std_msgs/Float64.h>
 #include <std_srvs/SetBool.h>
@@ -282,6 +283,8 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
       {[&] { mon.inclination(1.6); }, {"inclination = 1.6", "|alpha| < pi/2"}},
       {[&] { mon.inclination(-inf); }, {"inclination = -inf"}},
       {[&] { mon.spin(inf); }, {"spin = inf", "finite"}},
+      // Accepted before issue 11: the energy overflowed and the node published nothing until a reset.
+      {[&] { mon.spin(1e308); }, {"spin = 1e+308", "|spin| <= 1e+06"}},
       {cmd([](top_sim::TopCommand& c) { c.set_rotor_coupling = true; c.rotor_coupling = -1e-9; }),
        {"rotor_coupling = -1e-09", ": must be", ">= 0"}},  // shortest round-trip text of the value
       {cmd([](top_sim::TopCommand& c) { c.set_friction = true; c.friction_law = "coulomb"; c.mu = -0.1; }),
@@ -317,6 +320,41 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
   EXPECT_NEAR(s.spin, before.msg.spin, 0.5 + 2.0 * (s.sim_time - before.msg.sim_time));  // |d spin/dt| < 2 rad/s^2
   EXPECT_NEAR(s.mu, paper_mu(0.25, 0.6, s.slip), 1e-12) << "pmma law (scene) still in force";
   EXPECT_NE(s.regime, top_sim::TopState::CONTACT_FAULT);
+}
+
+// dynamic_reconfigure's ranges clamped silently (real_time_factor -1 became 0, "as fast as possible"; publish_rate
+// 0 became 1 Hz). The .cfg has no ranges now: the node refuses the value, warns, and the configuration it answers
+// with keeps the value in force.
+TEST_F(NodeTest, DynamicReconfigureRefusesOutOfRangeValuesInsteadOfClamping) {
+  struct Case {
+    const char* name;
+    double value, in_force;
+    std::vector<std::string> warning;
+  };
+  const std::vector<Case> cases = {{"real_time_factor", -1.0, 1.0, {"real_time_factor = -1", ">= 0"}},
+                                   {"publish_rate", 0.0, g_rate, {"publish_rate = 0", "(0, 10000]"}},
+                                   {"spin", 2e6, std::nan(""), {"spin = 2e+06", "|spin| <= 1e+06"}},
+                                   {"alpha", 2.0, std::nan(""), {"inclination = 2", "|alpha| < pi/2"}}};
+  const Received before = mon.latest();
+  for (const Case& k : cases) {
+    dynamic_reconfigure::Reconfigure srv;
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = k.name;
+    p.value = k.value;
+    srv.request.config.doubles.push_back(p);
+    const std::size_t w = mon.warning_count();
+    std::size_t at = 0;
+    ASSERT_TRUE(ros::service::call(kNode + "/set_parameters", srv)) << k.name;
+    EXPECT_TRUE(mon.wait_warning(k.warning, w, 3.0, &at)) << "no warning for " << k.name;
+    for (const auto& d : srv.response.config.doubles)
+      if (d.name == k.name && !std::isnan(k.in_force)) EXPECT_EQ(d.value, k.in_force) << k.name;
+  }
+  const std::size_t n = mon.count();
+  ASSERT_GE(mon.wait_state([](const top_sim::TopState&) { return true; }, n + 5, 2.0), 0) << "node stopped publishing";
+  const top_sim::TopState s = mon.latest().msg;
+  EXPECT_EQ(s.alpha, before.msg.alpha);
+  EXPECT_EQ(s.requested_real_time_factor, 1.0);
+  EXPECT_NEAR(s.spin, before.msg.spin, 0.5 + 2.0 * (s.sim_time - before.msg.sim_time));
 }
 
 TEST_F(NodeTest, ResetReturnsToInitialStateWithMonotonicTime) {
