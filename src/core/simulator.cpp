@@ -60,6 +60,20 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
          m.tilt < kTiltGuard;
 }
 
+// The part of a sample of a finite state that is not finite (products of large speeds overflow), or nullptr.
+const char* overflowed_part(const SampleAnalysis& a) {
+  if (!std::isfinite(a.energy)) return "the energy";
+  const Dynamics& d = a.dynamics;
+  if (!(std::isfinite(d.mu) && std::isfinite(d.normal_force) && std::isfinite(d.nu_dot) &&
+        std::isfinite(d.contact.slip) && d.contact_force.allFinite() && d.omega_dot.allFinite() && d.a_cm.allFinite()))
+    return "the dynamics";
+  const RegimeIndicators& i = a.indicators;
+  if (!(std::isfinite(i.nutation_angle) && std::isfinite(i.nutation_rate) && std::isfinite(i.acceleration) &&
+        std::isfinite(i.speed)))
+    return "the regime indicators";
+  return nullptr;
+}
+
 std::string impact_painleve_message(double t, double denominator) {
   std::ostringstream os;
   os << "t = " << format_number(t) << " s: ";
@@ -404,9 +418,9 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
 // The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
 void Simulator::update_sample() {
   sample_ = analyse_sample(model_, mode_, y_);
-  // A finite state whose energy overflows (speeds ~1e154 m/s and up) is no answer either.
-  if (fault_ == ContactFault::none && !std::isfinite(sample_.energy))
-    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (the energy overflowed)");
+  // A finite state whose energy or dynamics overflow (spins ~1e150 rad/s and up) is no answer either.
+  const char* part = fault_ == ContactFault::none ? overflowed_part(sample_) : nullptr;
+  if (part) fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (" + part + " overflowed)");
   regime_ = fault_ != ContactFault::none ? Regime::contact_fault
                                          : classify(model_.regime, sample_.indicators, false, regime_);
 }

@@ -1,0 +1,33 @@
+// Findings of the fuzz targets (test/fuzz, docs/reliability.md "Fuzzing"): each test failed before its fix.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "test_util.hpp"
+
+namespace {
+
+using namespace top_sim;
+using top_sim_test::scene_from;
+
+// Spin 1e150 has a finite energy (2.5e294 J), so the loader admits it, but |a_cm| and the nutation rate overflow:
+// the snapshot held inf with no fault. Any overflow of the sample is a numerical fault, as the energy's was.
+TEST(FuzzFindings, SpinWhoseDynamicsOverflowIsANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: pmma\ninitial: {tilt: 0.1, spin: 1.0e150}\n"));
+  EXPECT_EQ(sim.fault(), ContactFault::numerical);
+  EXPECT_NE(sim.fault_message().find("overflowed"), std::string::npos) << sim.fault_message();
+  EXPECT_EQ(sim.snapshot().regime, Regime::contact_fault);
+}
+
+// The same through a command applied at the current instant (advance_to(time())): it published inf without a fault.
+TEST(FuzzFindings, CommandedSpinWhoseDynamicsOverflowIsANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: pmma\n"));
+  Command spin_up;
+  spin_up.spin = 1.0e150;
+  ASSERT_EQ(sim.submit(spin_up), "");
+  sim.advance_to(sim.time());
+  EXPECT_EQ(sim.fault(), ContactFault::numerical) << top_sim_test::nonfinite_fields(sim.snapshot());
+  EXPECT_NE(sim.fault_message().find("overflowed"), std::string::npos) << sim.fault_message();
+}
+
+}  // namespace
