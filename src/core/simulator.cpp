@@ -25,6 +25,8 @@ constexpr double kSamplesPerNutation = 40.0;
 constexpr int kMaxSamplesPerStep = 4096;
 constexpr int kMinFlightSamples = 4;      // a whole hop may fit in one step: always look inside it
 constexpr int kMaxInstantSwitches = 100;  // mode switches at one instant before the Zeno guard stops the run
+// Consecutive steps too small to change t (below its resolution: motion far too fast) before the run is stopped.
+constexpr int kMaxStalledSteps = 1000;
 // Guard bands: a margin this close to its threshold at either end of a step makes the step sampled inside.
 constexpr double kForceGuard = 0.5;       // N, F_n, rolling margin: fraction of the weight m g
 constexpr double kStickGuard = 1.0e3;     // stick function: |v_t| < 1000 v_stick
@@ -72,6 +74,11 @@ const char* overflowed_part(const SampleAnalysis& a) {
         std::isfinite(i.speed)))
     return "the regime indicators";
   return nullptr;
+}
+
+std::string stalled_message(double t) {
+  return describe(ContactFault::numerical, 0.0, t) + " (" + std::to_string(kMaxStalledSteps) +
+         " steps too small to change t = " + format_number(t) + " s: the motion is too fast for the time's resolution)";
 }
 
 std::string impact_painleve_message(double t, double denominator) {
@@ -229,6 +236,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
     if (fault_ != ContactFault::none) break;
     double t_stop = t_target;
     if (next_event_ < scene_.events.size()) t_stop = std::min(t_stop, t_origin_ + scene_.events[next_event_].t);
+    int stalled = 0;
     try {
       for (;;) {
         // Events are scanned on the dense output up to t_stop only: an event beyond it waits for the next call.
@@ -244,11 +252,17 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
           update_sample();
           return false;
         }
+        const double t_before = stepper_->time();
         stepper_->step(t_stop);
         if (!all_finite(stepper_->state())) {
           t_ = stepper_->previous_time();
           stepper_->state_at(t_, y_);
           fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
+          break;
+        }
+        stalled = stepper_->time() > t_before ? 0 : stalled + 1;
+        if (stalled > kMaxStalledSteps) {  // y_ and t_ stay at the last boundary: the steps never left it
+          fail(ContactFault::numerical, stalled_message(t_before));
           break;
         }
       }

@@ -31,3 +31,23 @@ TEST(FuzzFindings, CommandedSpinWhoseDynamicsOverflowIsANumericalFault) {
 }
 
 }  // namespace
+
+namespace {
+
+using namespace top_sim;
+using top_sim_test::scene_from;
+
+// Spin -4.5e129 on a Coulomb plane: after the first slip the steps fell below the resolution of t = 7.3e-16 s and
+// advance_to(t, 0 s budget) made 358065 steps (4 s) without time moving, ignoring the budget, until a NaN. A run
+// whose steps stop advancing time is stopped with a numerical fault.
+TEST(FuzzFindings, StepsThatNoLongerAdvanceTimeAreANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: {law: coulomb, mu: 0.3}\n"
+                           "initial: {start: stationary, spin: -4.512935414995358e+129}\n"));
+  sim.advance_to(1.0e-3, 0.0);
+  EXPECT_EQ(sim.fault(), ContactFault::numerical) << sim.fault_message();
+  EXPECT_NE(sim.fault_message().find("steps too small to change t"), std::string::npos) << sim.fault_message();
+  EXPECT_LT(sim.stats().steps, 10000u);
+  EXPECT_TRUE(all_finite(sim.state()));
+}
+
+}  // namespace
