@@ -25,6 +25,8 @@ constexpr double kSamplesPerNutation = 40.0;
 constexpr int kMaxSamplesPerStep = 4096;
 constexpr int kMinFlightSamples = 4;      // a whole hop may fit in one step: always look inside it
 constexpr int kMaxInstantSwitches = 100;  // mode switches at one instant before the Zeno guard stops the run
+// Consecutive steps too small to change t (below its resolution: motion far too fast) before the run is stopped.
+constexpr int kMaxStalledSteps = 1000;
 // Guard bands: a margin this close to its threshold at either end of a step makes the step sampled inside.
 constexpr double kForceGuard = 0.5;       // N, F_n, rolling margin: fraction of the weight m g
 constexpr double kStickGuard = 1.0e3;     // stick function: |v_t| < 1000 v_stick
@@ -58,6 +60,25 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
   const double transfer_guard = mode == ContactMode::slipping ? kStickGuard : kForceGuard;
   return m.lift < kForceGuard * weight || m.transfer < transfer_guard || m.painleve < kPainleveGuard ||
          m.tilt < kTiltGuard;
+}
+
+// The part of a sample of a finite state that is not finite (products of large speeds overflow), or nullptr.
+const char* overflowed_part(const SampleAnalysis& a) {
+  if (!std::isfinite(a.energy)) return "the energy";
+  const Dynamics& d = a.dynamics;
+  if (!(std::isfinite(d.mu) && std::isfinite(d.normal_force) && std::isfinite(d.nu_dot) &&
+        std::isfinite(d.contact.slip) && d.contact_force.allFinite() && d.omega_dot.allFinite() && d.a_cm.allFinite()))
+    return "the dynamics";
+  const RegimeIndicators& i = a.indicators;
+  if (!(std::isfinite(i.nutation_angle) && std::isfinite(i.nutation_rate) && std::isfinite(i.acceleration) &&
+        std::isfinite(i.speed)))
+    return "the regime indicators";
+  return nullptr;
+}
+
+std::string stalled_message(double t) {
+  return describe(ContactFault::numerical, 0.0, t) + " (" + std::to_string(kMaxStalledSteps) +
+         " steps too small to change t = " + format_number(t) + " s: the motion is too fast for the time's resolution)";
 }
 
 std::string impact_painleve_message(double t, double denominator) {
@@ -228,6 +249,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
     if (fault_ != ContactFault::none) break;
     double t_stop = t_target;
     if (next_event_ < scene_.events.size()) t_stop = std::min(t_stop, t_origin_ + scene_.events[next_event_].t);
+    int stalled = 0;
     try {
       for (;;) {
         // Events are scanned on the dense output up to t_stop only: an event beyond it waits for the next call.
@@ -243,9 +265,15 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
           update_sample();
           return false;
         }
+        const double t_before = stepper_->time();
         stepper_->step(t_stop);
         if (!all_finite(stepper_->state())) {
           stop_at_step_start("");
+          break;
+        }
+        stalled = stepper_->time() > t_before ? 0 : stalled + 1;
+        if (stalled > kMaxStalledSteps) {  // y_ and t_ stay at the last boundary: the steps never left it
+          fail(ContactFault::numerical, stalled_message(t_before));
           break;
         }
       }
@@ -422,9 +450,9 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
 // The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
 void Simulator::update_sample() {
   sample_ = analyse_sample(model_, mode_, y_);
-  // A finite state whose energy overflows (speeds ~1e154 m/s and up) is no answer either.
-  if (fault_ == ContactFault::none && !std::isfinite(sample_.energy))
-    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (the energy overflowed)");
+  // A finite state whose energy or dynamics overflow (spins ~1e150 rad/s and up) is no answer either.
+  const char* part = fault_ == ContactFault::none ? overflowed_part(sample_) : nullptr;
+  if (part) fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (" + part + " overflowed)");
   regime_ = fault_ != ContactFault::none ? Regime::contact_fault
                                          : classify(model_.regime, sample_.indicators, false, regime_);
 }

@@ -1,0 +1,53 @@
+// Findings of the fuzz targets (test/fuzz, docs/reliability.md "Fuzzing"): each test failed before its fix.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "test_util.hpp"
+
+namespace {
+
+using namespace top_sim;
+using top_sim_test::scene_from;
+
+// Spin 1e150 has a finite energy (2.5e294 J), so the loader admits it, but |a_cm| and the nutation rate overflow:
+// the snapshot held inf with no fault. Any overflow of the sample is a numerical fault, as the energy's was.
+TEST(FuzzFindings, SpinWhoseDynamicsOverflowIsANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: pmma\ninitial: {tilt: 0.1, spin: 1.0e150}\n"));
+  EXPECT_EQ(sim.fault(), ContactFault::numerical);
+  EXPECT_NE(sim.fault_message().find("overflowed"), std::string::npos) << sim.fault_message();
+  EXPECT_EQ(sim.snapshot().regime, Regime::contact_fault);
+}
+
+// The same through a command applied at the current instant (advance_to(time())): it published inf without a fault.
+TEST(FuzzFindings, CommandedSpinWhoseDynamicsOverflowIsANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: pmma\n"));
+  Command spin_up;
+  spin_up.spin = 1.0e150;
+  ASSERT_EQ(sim.submit(spin_up), "");
+  sim.advance_to(sim.time());
+  EXPECT_EQ(sim.fault(), ContactFault::numerical) << top_sim_test::nonfinite_fields(sim.snapshot());
+  EXPECT_NE(sim.fault_message().find("overflowed"), std::string::npos) << sim.fault_message();
+}
+
+}  // namespace
+
+namespace {
+
+using namespace top_sim;
+using top_sim_test::scene_from;
+
+// Spin -4.5e129 on a Coulomb plane: after the first slip the steps fell below the resolution of t = 7.3e-16 s and
+// advance_to(t, 0 s budget) made 358065 steps (4 s) without time moving, ignoring the budget, until a NaN. A run
+// whose steps stop advancing time is stopped with a numerical fault.
+TEST(FuzzFindings, StepsThatNoLongerAdvanceTimeAreANumericalFault) {
+  Simulator sim(scene_from("top: aluminium\nfriction: {law: coulomb, mu: 0.3}\n"
+                           "initial: {start: stationary, spin: -4.512935414995358e+129}\n"));
+  sim.advance_to(1.0e-3, 0.0);
+  EXPECT_EQ(sim.fault(), ContactFault::numerical) << sim.fault_message();
+  EXPECT_NE(sim.fault_message().find("steps too small to change t"), std::string::npos) << sim.fault_message();
+  EXPECT_LT(sim.stats().steps, 10000u);
+  EXPECT_TRUE(all_finite(sim.state()));
+}
+
+}  // namespace

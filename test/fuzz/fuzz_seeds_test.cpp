@@ -1,0 +1,45 @@
+// Replays every file of test/fuzz/corpus/<target>/ through its fuzz target (fuzz_targets.hpp): the seeds and the
+// regression inputs of past findings run in every build, the sanitized one included.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "fuzz_targets.hpp"
+
+namespace {
+
+namespace fs = std::filesystem;
+using Target = std::string (*)(const std::uint8_t*, std::size_t);
+
+std::vector<fs::path> corpus(const std::string& target) {
+  std::vector<fs::path> files;
+  for (const auto& entry : fs::directory_iterator(fs::path(TOP_SIM_FUZZ_CORPUS_DIR) / target))
+    if (entry.is_regular_file()) files.push_back(entry.path());
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+std::vector<std::uint8_t> bytes_of(const fs::path& file) {
+  std::ifstream in(file, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+void replay(const std::string& name, Target target) {
+  const std::vector<fs::path> files = corpus(name);
+  ASSERT_FALSE(files.empty()) << "no seeds in " << TOP_SIM_FUZZ_CORPUS_DIR << "/" << name;
+  for (const fs::path& file : files) {
+    const std::vector<std::uint8_t> data = bytes_of(file);
+    EXPECT_EQ(target(data.data(), data.size()), "") << file;
+  }
+}
+
+TEST(FuzzSeeds, SceneLoader) { replay("scene_loader", top_sim::fuzz::scene_loader); }
+TEST(FuzzSeeds, Command) { replay("command", top_sim::fuzz::command); }
+TEST(FuzzSeeds, Step) { replay("step", top_sim::fuzz::step); }
+
+}  // namespace

@@ -1,0 +1,7 @@
+// libFuzzer entry of the step target (fuzz_targets.hpp); built with -DTOP_SIM_FUZZ=ON, run by scripts/fuzz.sh.
+#include "fuzz_targets.hpp"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  top_sim::fuzz::require("step", top_sim::fuzz::step(data, size));
+  return 0;
+}

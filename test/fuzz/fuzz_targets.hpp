@@ -1,0 +1,33 @@
+// The three fuzz targets of issue 11: one function each, shared by the libFuzzer entry files (fuzz_*.cpp) and the
+// seed replay in the GoogleTest suite (fuzz_seeds_test.cpp). Each returns "" for an admissible outcome and a
+// description of the broken invariant otherwise; the libFuzzer entries abort on it (require()).
+//
+// Every input ends in milliseconds: at most kMaxSimulatedTime of simulated time in at most kMaxSteps steps.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+namespace top_sim::fuzz {
+
+constexpr double kMaxSimulatedTime = 1.0e-3;  // [s] simulated after a scene loads or a command is accepted
+constexpr int kMaxSteps = 64;                 // integrator steps per advance (Simulator::advance_to with budget 0)
+
+// Bytes as a YAML scene: parse_scene either throws SceneError with a message, or returns a scene whose initial
+// state is finite and that a Simulator runs for kMaxSimulatedTime to a finite state or a named fault.
+std::string scene_loader(const std::uint8_t* data, std::size_t size);
+
+// Bytes as 1-3 Commands (any doubles, any friction law and table) for one of a few config scenes: submit() says
+// what validate() says; an accepted command is applied and the run ends finite or with a named fault; a rejected
+// one has a message and changes nothing (the run equals a twin that never saw it).
+std::string command(const std::uint8_t* data, std::size_t size);
+
+// Bytes as an initial state (tilt, spin, velocities, gap, ...) and integrator settings on one of a few config
+// scenes: what the loader admits steps, one step at a time, to a finite state or a named fault.
+std::string step(const std::uint8_t* data, std::size_t size);
+
+// Prints the broken invariant of `target` and aborts (the libFuzzer entries call this); does nothing for "".
+void require(const char* target, const std::string& verdict);
+
+}  // namespace top_sim::fuzz
