@@ -94,13 +94,14 @@ class Section {
     throw SceneError(file_, join(path_, key), "'" + v + "' is not one of " + list);
   }
 
-  Eigen::Vector2d pair(const char* key, const Eigen::Vector2d& def) {
+  Eigen::Vector2d pair(const char* key, const Eigen::Vector2d& def,
+                       const std::function<bool(double)>& ok = [](double) { return true; },
+                       const std::string& range = "a finite number") {
     if (!has(key)) return def;
     const YAML::Node n = node_[key];
     const std::string k = join(path_, key);
     if (!n.IsSequence() || n.size() != 2) throw SceneError(file_, k, show(n) + " must be a list of 2 numbers");
-    auto any = [](double) { return true; };
-    return {to_number(n[0], k + "[0]", any, "a finite number"), to_number(n[1], k + "[1]", any, "a finite number")};
+    return {to_number(n[0], k + "[0]", ok, range), to_number(n[1], k + "[1]", ok, range)};
   }
 
   // Every key present must have been read by now.
@@ -260,7 +261,8 @@ void read_initial(Section& root, const std::string& file, const Model& model, In
   ic.tilt = i.number("tilt", ic.tilt, [](double v) { return v >= 0.0 && v < M_PI; }, "in [0, pi) [rad]");
   ic.tilt_azimuth = i.number("tilt_azimuth", ic.tilt_azimuth, finite, "a finite number [rad]");
   ic.spin = i.number("spin", ic.spin, spin_range, kSpinRange);
-  ic.angular_velocity_transverse = i.pair("angular_velocity_transverse", ic.angular_velocity_transverse);
+  ic.angular_velocity_transverse =
+      i.pair("angular_velocity_transverse", ic.angular_velocity_transverse, spin_range, kSpinRange);
   ic.position = i.pair("position", ic.position);
   ic.velocity = i.pair("velocity", ic.velocity);
   ic.gap = i.number("gap", ic.gap, non_negative, ">= 0 [m] (height of the tip sphere above the plane)");

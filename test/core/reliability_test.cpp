@@ -73,6 +73,8 @@ TEST(Reliability, SpinsBeyondTheLimitAreRefused) {
   Command at_limit;
   at_limit.spin = kMaxSpin;
   EXPECT_EQ(sim.submit(at_limit), "");
+  EXPECT_THROW(scene_from(scene_text("aluminium", "{tilt: 0.1, angular_velocity_transverse: [0.0, 1.0e120]}")),
+               SceneError);  // overflowed the regime indicators at t = 0 (found by fuzz_step)
   try {
     scene_from(scene_text("aluminium", "{tilt: 0.1, spin: 1.5e6}"));
     ADD_FAILURE() << "initial.spin 1.5e6 accepted";
