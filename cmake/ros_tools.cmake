@@ -16,3 +16,5 @@ install(TARGETS top_sim_teleop RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINAT
 # rviz/ is installed by ros.cmake; the benchmark and screenshot helpers run from the source tree or installed.
 catkin_install_python(PROGRAMS scripts/top_sim_launch scripts/bench_node.py scripts/grab_window.py scripts/rviz_layout.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
+# bench_node.py imports its helpers from the module beside it.
+install(FILES scripts/node_harness.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})

@@ -18,57 +18,17 @@ Needs a built workspace (scripts/build.sh): sources $TOP_SIM_WS/devel/setup.bash
 """
 import argparse
 import json
-import math
 import os
 import platform
-import signal
-import socket
 import statistics
-import subprocess
 import sys
 import threading
 import time
 import warnings
-import xmlrpc.client
 
-REPO = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
-CLK_TCK = os.sysconf('SC_CLK_TCK')
-
-
-def ros_environment():
-    """The environment with top_sim's devel space sourced (unless top_sim is already on the package path)."""
-    env = dict(os.environ)
-    env['PATH'] = '/usr/bin:' + env.get('PATH', '')
-    env.setdefault('ROS_HOSTNAME', 'localhost')
-    if subprocess.run(['rospack', 'find', 'top_sim'], env=env, capture_output=True).returncode == 0:
-        return env
-    ws = os.environ.get('TOP_SIM_WS', os.path.join(REPO, '.catkin_ws'))
-    setup = os.path.join(ws, 'devel', 'setup.bash')
-    if not os.path.isfile(setup):
-        sys.exit(f'bench_node: top_sim is not on the ROS package path and {setup} does not exist: build first')
-    out = subprocess.run(['bash', '-c', f'source "{setup}" && env -0'], env=env, capture_output=True, check=True).stdout
-    return dict(kv.split('=', 1) for kv in out.decode().split('\0') if '=' in kv)
-
-
-def free_port():
-    with socket.socket() as s:
-        s.bind(('localhost', 0))
-        return s.getsockname()[1]
-
-
-def cpu_ticks(pid):
-    """utime + stime of a process (all its threads), in clock ticks."""
-    with open(f'/proc/{pid}/stat') as f:
-        fields = f.read().rsplit(')', 1)[1].split()
-    return int(fields[11]) + int(fields[12])   # fields 14 and 15 of proc(5), counted after the comm field
-
-
-def percentile(values, p):
-    """Linear-interpolated percentile p in [0, 100] of a non-empty list."""
-    v = sorted(values)
-    k = (len(v) - 1) * p / 100.0
-    lo, hi = math.floor(k), math.ceil(k)
-    return v[lo] + (v[hi] - v[lo]) * (k - lo)
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))   # node_harness.py, also from catkin's relay
+from node_harness import (REPO, CLK_TCK, cpu_ticks, launch_node, percentile, ros_environment,  # noqa: E402
+                          start_master, stop_group)
 
 
 def arrival_jitter(recv, stamp):
@@ -113,34 +73,12 @@ class Recorder:
                     self.seen += 1
 
 
-def node_pid(master_uri, node):
-    master = xmlrpc.client.ServerProxy(master_uri)
-    code, _, uri = master.lookupNode('/top_sim_bench', node)
-    if code != 1:
-        return None
-    code, _, pid = xmlrpc.client.ServerProxy(uri).getPid('/top_sim_bench')
-    return pid if code == 1 else None
-
-
 def one_run(args, env, rospy, Float64, recorder, index):
     log_path = os.path.join(args.log_dir, f'run{index}_roslaunch.log')
-    log = open(log_path, 'w')
-    launch = subprocess.Popen(
-        ['roslaunch', 'top_sim', 'top_sim.launch', f'scene:={args.scene}', 'rviz:=false',
-         f'publish_rate:={args.rate}', f'real_time_factor:={args.rtf}'],
-        env=env, stdout=log, stderr=subprocess.STDOUT, start_new_session=True)
+    node = args.node
+    launch, pid = launch_node(env, [f'scene:={args.scene}', f'publish_rate:={args.rate}',
+                                    f'real_time_factor:={args.rtf}'], node, log_path)
     try:
-        node = args.node
-        pid = None
-        deadline = time.time() + 60
-        while pid is None and time.time() < deadline and launch.poll() is None:
-            time.sleep(0.2)
-            try:
-                pid = node_pid(env['ROS_MASTER_URI'], node)
-            except (OSError, xmlrpc.client.Error):
-                pid = None
-        if pid is None:
-            raise RuntimeError(f'{node} did not come up within 60 s (see {log_path})')
         time.sleep(args.warmup)   # connection set-up and the first second of achieved-factor averaging
 
         # queue_size=None: publish() writes the socket in this thread, so the send time stamped below is exact.
@@ -175,13 +113,7 @@ def one_run(args, env, rospy, Float64, recorder, index):
             rows, latencies, between = list(recorder.rows), list(recorder.latencies), list(recorder.between)
         pub.unregister()
     finally:
-        os.killpg(launch.pid, signal.SIGINT)
-        try:
-            launch.wait(timeout=20)
-        except subprocess.TimeoutExpired:
-            os.killpg(launch.pid, signal.SIGKILL)
-            launch.wait()
-        log.close()
+        stop_group(launch)
 
     if len(rows) < 10:
         raise RuntimeError(f'only {len(rows)} TopState messages received (see {log_path})')
@@ -353,27 +285,13 @@ def main():
     args.log_dir = args.log_dir or f'/tmp/top_sim_bench_node.{os.getpid()}'
     os.makedirs(args.log_dir, exist_ok=True)
 
-    env = ros_environment()
-    port = free_port()
-    env['ROS_MASTER_URI'] = f'http://localhost:{port}'
-    os.environ.update(env)
-    sys.path[:0] = [p for p in env.get('PYTHONPATH', '').split(':') if p]
-    master = subprocess.Popen(['rosmaster', '--core', '-p', str(port)], env=env,
-                              stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+    env = ros_environment('bench_node')
+    master = start_master(env, 'bench_node')
     results = []
     try:
         import rospy
         from std_msgs.msg import Float64
         from top_sim.msg import TopState
-        deadline = time.time() + 30
-        while True:
-            try:
-                xmlrpc.client.ServerProxy(env['ROS_MASTER_URI']).getSystemState('/top_sim_bench')
-                break
-            except OSError:
-                if time.time() > deadline:
-                    sys.exit('bench_node: rosmaster did not start')
-                time.sleep(0.2)
         rospy.init_node('top_sim_bench', disable_signals=True)
         recorder = Recorder(rospy, TopState, f'{args.node}/top_state')
         for i in range(1, args.runs + 1):
@@ -381,8 +299,7 @@ def main():
             print(json.dumps(r), flush=True)
             results.append(r)
     finally:
-        os.killpg(master.pid, signal.SIGINT)
-        master.wait(timeout=20)
+        stop_group(master)
 
     summary = {k: median_of(results, k) for k in SUMMARY_KEYS}
     print(json.dumps({'median': summary}, indent=1))
