@@ -211,9 +211,10 @@ class TopSimNode {
     if (publish_clock_) clock_pub_ = nh_.advertise<rosgraph_msgs::Clock>("/clock", 10);
     // No Nagle delay on commands: their latency is part of the contract (two publish periods).
     const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
-    inclination_sub_ = pnh_.subscribe("inclination", 10, &TopSimNode::on_inclination, this, hints);
-    spin_sub_ = pnh_.subscribe("spin", 10, &TopSimNode::on_spin, this, hints);
-    command_sub_ = pnh_.subscribe("command", 10, &TopSimNode::on_command, this, hints);
+    // Queues of kCommandQueue: a 1 kHz command stream is 5 per 200 Hz tick; 10 dropped 0.24 % of a flood on a busy CPU.
+    inclination_sub_ = pnh_.subscribe("inclination", kCommandQueue, &TopSimNode::on_inclination, this, hints);
+    spin_sub_ = pnh_.subscribe("spin", kCommandQueue, &TopSimNode::on_spin, this, hints);
+    command_sub_ = pnh_.subscribe("command", kCommandQueue, &TopSimNode::on_command, this, hints);
     reset_srv_ = pnh_.advertiseService("reset", &TopSimNode::on_reset, this);
     pause_srv_ = pnh_.advertiseService("pause", &TopSimNode::on_pause, this);
   }
@@ -273,6 +274,7 @@ class TopSimNode {
     }
     step_cpu_ += thread_cpu_seconds() - cpu0;
     steps_ += sim_->stats().steps - steps0;
+    mode_switches_ += sim_->take_mode_switches().size();  // drained: the core would hold up to 100000 until reset
     report_fault();
     pacer_->record(wall, sim_->time(), running);
     report_pacing();
@@ -410,6 +412,7 @@ class TopSimNode {
     st.add("max energy balance residual", sim_->max_energy_residual());
     st.add("regime", top_sim::to_string(s.regime));
     st.add("contact mode", top_sim::to_string(s.contact_mode));
+    st.add("contact-mode switches", mode_switches_);
     st.add("gap [m]", s.gap);
     st.add("alpha [rad]", s.alpha);
     st.add("spin [rad/s]", s.spin);
@@ -631,6 +634,8 @@ class TopSimNode {
   std::unique_ptr<top_sim::Pacer> pacer_;
   bool paused_ = false, fault_reported_ = false, reported_behind_ = false;
   static constexpr double kRejectWarnPeriod = 1.0;  // wall seconds between rejected-command warnings
+  static constexpr uint32_t kCommandQueue = 100;      // messages held per command topic between ticks
+  std::size_t mode_switches_ = 0;                     // since start
   double last_reject_warn_ = -1e9;
   std::size_t suppressed_rejects_ = 0, rejected_total_ = 0;
   std::string last_reject_text_;
