@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <iomanip>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -121,12 +122,15 @@ bool plot_stationary(const Arguments& a, const std::vector<top_sim::StationaryMe
     if (!p || !c) return false;
   }
   const char* env = std::getenv("TOP_SIM_PLOT_DIR");
-  const std::string dir = env ? env : default_config_dir() + "/../plots";
-  std::string label = a.law;
+  // share/top_sim/plots next to share/top_sim/config (textually: config is a link in the build tree).
+  const std::string dir = env ? env : std::filesystem::path(default_config_dir()).parent_path().string() + "/plots";
+  std::ostringstream label;
+  label << std::setprecision(3) << a.law << " fit:";
   for (std::size_t i = 0; i < r.names.size(); ++i)
-    label += " " + r.names[i] + "=" + format_number(r.values[static_cast<Eigen::Index>(i)]);
+    label << " " << r.names[i] << " " << r.values[static_cast<Eigen::Index>(i)] << " +- "
+          << r.errors[static_cast<Eigen::Index>(i)];
   const std::string cmd = "python3 '" + dir + "/fit_stationary.py' '" + points_csv + "' '" + curve_csv + "' '" +
-                          a.plot + "' '" + label + "'";
+                          a.plot + "' '" + label.str() + "'";
   const int rc = std::system(cmd.c_str());
   std::filesystem::remove(points_csv);
   std::filesystem::remove(curve_csv);
@@ -167,6 +171,10 @@ int run_fit(const Arguments& a) {
   const double cpu = thread_cpu_seconds() - cpu0;
   if (a.json != "-") print_result(r, cpu);
   const bool written = write_json(a.json, fit_json(r, a.kind, cpu)) && plotted;
+  if (r.sigma_known && r.dof > 0 && r.chi2 > r.dof + 5.0 * std::sqrt(2.0 * r.dof))  // 5 sigma above chi2's mean
+    std::cerr << "top_sim_fit: warning: chi2 = " << r.chi2 << " for " << r.dof
+              << " degrees of freedom: the model does not fit the data within the given sigma (a local minimum? "
+                 "wrong sigma?)\n";
   if (!r.converged) {
     std::cerr << "top_sim_fit: the fit did not converge: " << r.message << "\n";
     return 3;
