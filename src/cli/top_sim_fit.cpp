@@ -153,6 +153,7 @@ int run_fit(const Arguments& a) {
   std::ifstream in = open_data(a.data);
   const double cpu0 = thread_cpu_seconds();
   FitResult r;
+  double cpu = 0.0;
   bool plotted = true;
   if (a.kind == "stationary") {
     const auto data = read_stationary_data(in, a.data);
@@ -160,6 +161,7 @@ int run_fit(const Arguments& a) {
     parse_friction_law_kind(a.law, opt.law);
     opt.table_slips = a.slips;
     r = fit_stationary(data, opt);
+    cpu = thread_cpu_seconds() - cpu0;  // the fit only, not the plot
     if (!a.plot.empty()) plotted = plot_stationary(a, data, r, opt);
   } else {
     const auto data = read_trajectory_data(in, a.data);
@@ -167,8 +169,8 @@ int run_fit(const Arguments& a) {
     TrajectoryFitOptions opt;
     opt.sigma_position = a.sigma;
     r = fit_trajectory(scene, data, a.free, opt);
+    cpu = thread_cpu_seconds() - cpu0;
   }
-  const double cpu = thread_cpu_seconds() - cpu0;
   if (a.json != "-") print_result(r, cpu);
   const bool written = write_json(a.json, fit_json(r, a.kind, cpu)) && plotted;
   if (r.sigma_known && r.dof > 0 && r.chi2 > r.dof + 5.0 * std::sqrt(2.0 * r.dof))  // 5 sigma above chi2's mean
