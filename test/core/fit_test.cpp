@@ -232,4 +232,18 @@ TEST(FitCli, BadDataExitsTwoWithAClearMessage) {
   for (const auto& p : {missing, text, few, inf}) std::filesystem::remove(p);
 }
 
+TEST(FitCli, StationaryFitWritesTheJsonFields) {
+  const std::string json = write_temp("fit.json", "");
+  const Cli r = run_fit_cli("stationary '" + top_sim_test::config_dir() +
+                            "/../docs/data/fit/stationary_measured.csv' --law paper --json '" + json + "'");
+  EXPECT_EQ(r.exit_code, 0) << r.err;
+  std::ifstream in(json);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  for (const char* key : {"\"parameters\": {\"mu_c\": ", "\"uncertainties\"", "\"covariance\": {\"mu_c\": {\"mu_c\"",
+                          "\"chi2\"", "\"dof\": 22", "\"cpu_seconds\""})
+    EXPECT_NE(ss.str().find(key), std::string::npos) << key << " in " << ss.str();
+  std::filesystem::remove(json);
+}
+
 }  // namespace
