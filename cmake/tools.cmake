@@ -6,3 +6,14 @@ target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sw
 
 add_executable(top_sim_sweep src/cli/top_sim_sweep.cpp)
 target_link_libraries(top_sim_sweep top_sim_cli_common Threads::Threads)
+
+# top_sim_fit: friction-law fits (docs/analysis.md). Its --plot script is found in share/top_sim/plots, a link to
+# scripts/plots in the build tree as config/ is (cmake/layout.cmake).
+target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/fit_data.cpp)
+add_executable(top_sim_fit src/cli/top_sim_fit.cpp)
+target_link_libraries(top_sim_fit top_sim_cli_common)
+if(NOT EXISTS ${TOP_SIM_BUILD_SHARE}/plots)
+  file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/scripts/plots ${TOP_SIM_BUILD_SHARE}/plots SYMBOLIC)
+endif()
+install(TARGETS top_sim_fit RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
+install(FILES scripts/plots/fit_stationary.py scripts/plots/plotlib.py DESTINATION ${TOP_SIM_INSTALL_SHARE}/plots)
