@@ -24,6 +24,9 @@ struct FitResult {
   bool converged = false;
   std::string message;                 // the solver's stop reason
   int evaluations = 0;                 // residual evaluations (each a set of simulations for a trajectory fit)
+  // Parameters the solver pushed past their allowed range (the simulation used the nearest allowed value): the
+  // optimum lies on that bound and the errors there are not meaningful.
+  std::vector<std::string> at_bound;
   double value(const std::string& name) const;  // throws std::out_of_range
   double error(const std::string& name) const;
 };

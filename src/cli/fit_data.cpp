@@ -132,6 +132,9 @@ std::string fit_json(const FitResult& r, const std::string& kind, double cpu_sec
   }) << ",\n";
   o << "  \"chi2\": " << num(r.chi2) << ",\n  \"dof\": " << r.dof << ",\n";
   o << "  \"sigma_known\": " << (r.sigma_known ? "true" : "false") << ",\n";
+  o << "  \"at_bound\": [";
+  for (std::size_t i = 0; i < r.at_bound.size(); ++i) o << (i ? ", " : "") << quote(r.at_bound[i]);
+  o << "],\n";
   o << "  \"converged\": " << (r.converged ? "true" : "false") << ",\n  \"solver_message\": " << quote(r.message)
     << ",\n  \"evaluations\": " << r.evaluations << ",\n  \"cpu_seconds\": " << num(cpu_seconds) << "\n}\n";
   return o.str();

@@ -177,6 +177,9 @@ int run_fit(const Arguments& a) {
     std::cerr << "top_sim_fit: warning: chi2 = " << r.chi2 << " for " << r.dof
               << " degrees of freedom: the model does not fit the data within the given sigma (a local minimum? "
                  "wrong sigma?)\n";
+  for (const std::string& name : r.at_bound)
+    std::cerr << "top_sim_fit: warning: " << name << " ended on the bound of its allowed range (the solver asked "
+              << "for a value beyond it): the optimum is constrained there and its error is not meaningful\n";
   if (!r.converged) {
     std::cerr << "top_sim_fit: the fit did not converge: " << r.message << "\n";
     return 3;

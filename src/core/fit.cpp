@@ -402,6 +402,7 @@ FitResult fit_trajectory(const Scene& scene, const std::vector<ContactSample>& d
     Scene s = scene;
     set_scene_parameter(s, free[static_cast<std::size_t>(j)], x[j]);
     res.values[j] = get_scene_parameter(s, free[static_cast<std::size_t>(j)]);
+    if (res.values[j] != x[j]) res.at_bound.push_back(free[static_cast<std::size_t>(j)]);
   }
   return res;
 }
