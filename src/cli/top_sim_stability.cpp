@@ -242,7 +242,7 @@ double report_alpha_c(const top_sim::Scene& scene, double spin, double alpha0) {
   if (c.found)
     (*report) << "alpha_c located (stability lost along the slip branch from alpha " << alpha0 << ", " << c.bisections
               << " bisections in s): s = " << c.slip << ", alpha = " << c.alpha << " rad; the crossing mode: "
-              << c.mode << " (" << complex_text(c.eigenvalue) << " 1/s just past it)\n";
+              << c.mode << " (" << complex_text(c.eigenvalue) << " 1/s at the first unstable slip of the scan)\n";
   else
     (*report) << "alpha_c not located: " << c.reason << "\n";
   (*report) << "alpha_c analytic (critical_inclination, stationary.hpp): " << top_sim::critical_inclination(m.friction)
