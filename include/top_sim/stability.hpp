@@ -89,7 +89,7 @@ struct StabilityResult {
 // top has its rotor at absolute spin `rotor_spin`; with nu = rotor_spin - spin != 0 the bearing drags the shell
 // spin, and the spectrum is that of the frozen state (residual > 0). No analysis (exists = false) where no
 // sleeping state exists or where it does not move (alpha = 0, spin = 0, R = 0: the contact then sits at the
-// friction law's kink v_t = 0), nor where its speed |u*| + R |omega* x n| is below 100 v_eps (there the v_eps
+// friction law's kink v_t = 0), nor where it sticks (s* = 0, a law with mu(0) >= tan(alpha)), nor where its speed |u*| + R |omega* x n| is below 100 v_eps (there the v_eps
 // regularisation, not the law, sets the friction: s is shifted by more than 1 %).
 StabilityResult sleeping_stability(const Model& model, double spin, double rotor_spin = 0.0,
                                    const StabilityOptions& options = {});

@@ -157,8 +157,9 @@ void print_analysis(const top_sim::Model& model, const StabilityResult& r) {
   (*report) << "finite-difference error of Re precession (step h against 2h): " << r.precession_error << " 1/s"
             << (r.resolved ? "" : "  WARNING: above 1 % of Re precession, not resolved in double precision") << "\n";
   if (r.residual > 1e-3)
-    (*report) << "note: the state is not an equilibrium (|F| = " << r.residual
-              << "): the rotor's bearing drags the spin; this is the spectrum of the frozen state\n";
+    (*report) << "note: the state is not an equilibrium (|F| = " << r.residual << ")"
+              << (model.top.has_rotor ? ": the rotor's bearing drags the spin" : "")
+              << "; this is the spectrum of the frozen state\n";
 }
 
 std::string pair_json(Eigenvalue v) { return "[" + num(v.real()) + ", " + num(v.imag()) + "]"; }

@@ -178,6 +178,11 @@ StabilityResult stability_at(const Model& model_in, const StationaryState& st, d
                          : st.reason;
     return r;
   }
+  if (st.slip <= 0.0) {
+    r.reason = "the sleeping contact sticks (s* = 0: mu(0) >= tan(alpha)): v_t = 0 is the friction law's kink "
+               "(the rolling mode of physics.md section 9), no slipping linearisation";
+    return r;
+  }
   const double speed = st.velocity.norm() + st.rolling_speed;
   if (speed < kRegularisedSpeeds * model.regularization_speed) {
     r.reason = "the sleeping speed |u*| + R |omega* x n| = " + std::to_string(speed) + " m/s is below " +

@@ -175,6 +175,10 @@ TEST(SleepingStability, NoAnalysisWithoutAMovingSleepingState) {
   const StabilityResult level = sleeping_stability(default_model(0.0), kSpin);
   EXPECT_FALSE(level.exists);
   EXPECT_NE(level.reason.find("kink"), std::string::npos) << level.reason;
+  // A contact that sticks (Coulomb friction above tan(alpha)) sits at the kink v_t = 0.
+  const StabilityResult sticks = sleeping_stability(load_scene(top_sim_test::scene_path("coulomb")).model, kSpin);
+  EXPECT_FALSE(sticks.exists);
+  EXPECT_NE(sticks.reason.find("sticks"), std::string::npos) << sticks.reason;
   // Spins whose sleeping speed is within 100 v_eps are the regularisation's, not the law's.
   EXPECT_FALSE(sleeping_stability(default_model(0.1), 1e-5).exists);
 }
