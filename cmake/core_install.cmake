@@ -5,9 +5,11 @@ install(TARGETS top_sim_core EXPORT top_sim_core_targets
   LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB}
   INCLUDES DESTINATION ${TOP_SIM_INSTALL_INCLUDE})
 install(TARGETS top_sim_cli_common ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB} LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB})
-install(TARGETS top_sim_run top_sim_sweep top_sim_study RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
+install(TARGETS top_sim_run top_sim_sweep top_sim_study top_sim_stability RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
 install(DIRECTORY include/top_sim/ DESTINATION ${TOP_SIM_INSTALL_INCLUDE}/top_sim)
 install(DIRECTORY config DESTINATION ${TOP_SIM_INSTALL_SHARE})
+# top_sim_stability --plot finds its script at share/top_sim/plots (next to config/).
+install(FILES scripts/plots/stability.py scripts/plots/plotlib.py DESTINATION ${TOP_SIM_INSTALL_SHARE}/plots)
 
 include(CMakePackageConfigHelpers)
 set(TOP_SIM_CMAKE_DIR ${TOP_SIM_INSTALL_LIB}/cmake/top_sim_core)

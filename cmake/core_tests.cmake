@@ -8,8 +8,9 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   target_compile_definitions(top_sim_core_tests PRIVATE
     TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
     TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>"
-    TOP_SIM_TEST_FIT_BINARY="$<TARGET_FILE:top_sim_fit>")
-  add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep top_sim_fit)  # the CLI tests run them
+    TOP_SIM_TEST_FIT_BINARY="$<TARGET_FILE:top_sim_fit>"
+    TOP_SIM_TEST_STABILITY_BINARY="$<TARGET_FILE:top_sim_stability>")
+  add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep top_sim_fit top_sim_stability)  # the CLI tests run them
   add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
 
   # No function over 60 lines without a reason in its comment (scripts/check_function_length.py).

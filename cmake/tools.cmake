@@ -1,4 +1,4 @@
-# ROS-free tools that reproduce the paper: top_sim_sweep (grid over alpha -> CSV).
+# ROS-free tools that reproduce the paper: top_sim_sweep (grid over alpha -> CSV), top_sim_stability.
 find_package(Threads REQUIRED)
 
 # The per-point sweep logic lives in the shared CLI library so the paper tests run the same code.
@@ -17,3 +17,7 @@ if(NOT EXISTS ${TOP_SIM_BUILD_SHARE}/plots)
 endif()
 install(TARGETS top_sim_fit RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
 install(FILES scripts/plots/fit_stationary.py scripts/plots/plotlib.py DESTINATION ${TOP_SIM_INSTALL_SHARE}/plots)
+
+# The linear stability of the sleeping state (physics.md section 10): eigenvalues, alpha_c, spin windows.
+add_executable(top_sim_stability src/cli/top_sim_stability.cpp)
+target_link_libraries(top_sim_stability top_sim_cli_common)

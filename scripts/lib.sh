@@ -65,5 +65,5 @@ top_sim_sanitized_build() {
   top_sim_log "AddressSanitizer + UBSan build of the core's tests in $TOP_SIM_BUILD-sanitize (-j$TOP_SIM_JOBS)"
   cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD-sanitize" -DTOP_SIM_ROS=OFF -DTOP_SIM_PYTHON=OFF \
     -DTOP_SIM_SANITIZE=address,undefined -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null &&
-    cmake --build "$TOP_SIM_BUILD-sanitize" -j"$TOP_SIM_JOBS" --target top_sim_core_tests top_sim_run top_sim_sweep
+    cmake --build "$TOP_SIM_BUILD-sanitize" -j"$TOP_SIM_JOBS" --target top_sim_core_tests top_sim_run top_sim_sweep top_sim_stability
 }

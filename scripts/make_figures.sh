@@ -2,7 +2,7 @@
 # Regenerates every figure and table of docs/results.md from the project's own tools:
 # builds top_sim_run and top_sim_sweep (plain CMake, Release, -j2), runs the scenes and sweeps, thins the
 # CSV files into docs/data/, draws docs/img/fig*.png with Debian's python3-matplotlib, and rewrites the
-# phi* tables of docs/results.md.
+# phi* tables of docs/results.md; and docs/img/stability_*.png of docs/analysis.md (top_sim_stability).
 #
 #   bash scripts/make_figures.sh
 #
@@ -27,7 +27,7 @@ else
   cmake -S "$REPO" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DTOP_SIM_ROS=OFF -DTOP_SIM_TESTS=OFF \
     -DTOP_SIM_PYTHON=OFF >"$RAW/cmake.log" 2>&1 \
     || { cat "$RAW/cmake.log" >&2; exit 1; }
-  make -C "$BUILD" -j"${TOP_SIM_JOBS:-2}" top_sim_run top_sim_sweep >"$RAW/make.log" 2>&1 \
+  make -C "$BUILD" -j"${TOP_SIM_JOBS:-2}" top_sim_run top_sim_sweep top_sim_stability >"$RAW/make.log" 2>&1 \
     || { tail -50 "$RAW/make.log" >&2; exit 1; }
   BIN=$BUILD/bin
 fi
@@ -84,4 +84,13 @@ python3 "$PLOTS/fig5_linearized.py" "$DATA" "$IMG/fig5_linearized.png"
 python3 "$PLOTS/fig2_spins.py" "$DATA" "$IMG/fig2_spins.png"
 python3 "$PLOTS/fig3_gyro.py" "$DATA" "$IMG/fig3_gyro_reversal.png"
 python3 "$PLOTS/phi_table.py" "$DATA" "$REPO/docs/results.md"
+
+# ---- docs/analysis.md: linear stability of the sleeping state -------------------------------------------
+if [ -x "$BIN/top_sim_stability" ]; then
+  log "stability: sweeps over alpha (default scene) and shell spin (gyro_reversal)"
+  (cd "$REPO" && TOP_SIM_PLOTS_DIR=$PLOTS "$BIN/top_sim_stability" config/scenes/default.yaml \
+     --sweep-alpha 0.005:0.244:48 --plot "$IMG/stability_alpha.png" >/dev/null)
+  (cd "$REPO" && TOP_SIM_PLOTS_DIR=$PLOTS "$BIN/top_sim_stability" config/scenes/gyro_reversal.yaml \
+     --sweep-spin -2:2:81 --plot "$IMG/stability_gyro.png" >/dev/null)
+fi
 log "done: $IMG/fig*.png, $DATA/*.csv, tables in docs/results.md"

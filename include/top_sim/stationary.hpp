@@ -39,6 +39,11 @@ struct StationaryState {
 // Stable sleeping state for the model's alpha and friction, at shell spin omega* (signed).
 StationaryState stationary_state(const Model& model, double spin);
 
+// The sleeping state at another root `slip` of mu(s) = tan(alpha) (e.g. slip_unstable, or any s with the plane
+// at alpha = atan(mu(s))): the same f_hat* and omega*, the sliding speed and phi* of that slip. The caller
+// chooses a root: the friction balance is not checked (slip_unstable stays -1).
+StationaryState stationary_state_on_root(const Model& model, double spin, double slip);
+
 // The exact sleeping state vector at `position`; rotor relative spin set from the absolute spin.
 StateVector stationary_state_vector(const Model& model, const StationaryState& st, double spin,
                                     const Eigen::Vector2d& position, double rotor_spin);

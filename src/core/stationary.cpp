@@ -82,43 +82,11 @@ bool stable_branch(const FrictionLaw& law, double tan_alpha, double& s_stable, d
   return true;
 }
 
-}  // namespace
-
-StationaryState stationary_state(const Model& model, double spin) {
-  StationaryState st;
+// The velocity u* at st.slip: rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+)
+// downhill, tan(phi+/2) = s*.
+void set_sleeping_velocity(const Model& model, StationaryState& st) {
   const double R = model.top.tip_radius;
-  const double f = model.top.com_offset;
-  const double alpha = model.plane.inclination;
-  if (f <= 0.0) {
-    std::ostringstream why;  // messages are built only on the failure paths: the adiabatic RHS calls this
-    why << "com_offset f = " << f << " <= 0: the stationary solver covers ordinary tops (f > 0) only";
-    st.reason = why.str();
-    return st;
-  }
-  if (R * std::abs(std::sin(alpha)) > f) {
-    std::ostringstream why;
-    why << "R sin(alpha) = " << R * std::abs(std::sin(alpha)) << " m exceeds f = " << f
-        << " m: the centre of mass cannot sit above the contact point, no stationary state exists";
-    st.reason = why.str();
-    return st;
-  }
-  if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
-    std::ostringstream why;
-    why << "tan(alpha) = " << std::tan(std::abs(alpha)) << " has no stable balance mu(s*) = tan(alpha) (max mu = "
-        << max_friction_coefficient(model.friction) << ", alpha_c = " << critical_inclination(model.friction)
-        << " rad): the top slides downhill";
-    st.reason = why.str();
-    return st;
-  }
-  st.exists = true;
-
-  // f_hat* = -(R/f) n + f_g g_hat puts the centre of mass vertically above the contact point.
   const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
-  const double f_g = -(R / f) * std::cos(alpha) - std::sqrt(1.0 - std::pow(R * std::sin(alpha) / f, 2));
-  st.f_hat = (-(R / f) * Eigen::Vector3d::UnitZ() + f_g * g_hat).normalized();
-  st.omega = spin * st.f_hat;
-
-  // Rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+) downhill, tan(phi+/2) = s*.
   const Eigen::Vector3d rolling = R * Eigen::Vector3d(st.omega.y(), -st.omega.x(), 0.0);
   st.rolling_speed = rolling.norm();
   const double phi_plus = 2.0 * std::atan(st.slip);
@@ -133,6 +101,65 @@ StationaryState stationary_state(const Model& model, double spin) {
     st.reason = R == 0.0 ? "R = 0: the sleeping top does not roll, so its direction of travel phi* is undefined"
                          : "the sleeping top does not move (alpha = 0 or spin = 0): phi* is undefined";
   }
+}
+
+}  // namespace
+
+namespace {
+
+// The geometry of section 5 (f_hat*, omega*); false (with the reason) when f <= 0 or R sin(alpha) > f.
+bool sleeping_geometry(const Model& model, double spin, StationaryState& st) {
+  const double R = model.top.tip_radius;
+  const double f = model.top.com_offset;
+  const double alpha = model.plane.inclination;
+  if (f <= 0.0) {
+    std::ostringstream why;  // messages are built only on the failure paths: the adiabatic RHS calls this
+    why << "com_offset f = " << f << " <= 0: the stationary solver covers ordinary tops (f > 0) only";
+    st.reason = why.str();
+    return false;
+  }
+  if (R * std::abs(std::sin(alpha)) > f) {
+    std::ostringstream why;
+    why << "R sin(alpha) = " << R * std::abs(std::sin(alpha)) << " m exceeds f = " << f
+        << " m: the centre of mass cannot sit above the contact point, no stationary state exists";
+    st.reason = why.str();
+    return false;
+  }
+  // f_hat* = -(R/f) n + f_g g_hat puts the centre of mass vertically above the contact point.
+  const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
+  const double f_g = -(R / f) * std::cos(alpha) - std::sqrt(1.0 - std::pow(R * std::sin(alpha) / f, 2));
+  st.f_hat = (-(R / f) * Eigen::Vector3d::UnitZ() + f_g * g_hat).normalized();
+  st.omega = spin * st.f_hat;
+  return true;
+}
+
+}  // namespace
+
+StationaryState stationary_state(const Model& model, double spin) {
+  StationaryState st;
+  if (!sleeping_geometry(model, spin, st)) return st;
+  const double alpha = model.plane.inclination;
+  if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
+    std::ostringstream why;
+    why << "tan(alpha) = " << std::tan(std::abs(alpha)) << " has no stable balance mu(s*) = tan(alpha) (max mu = "
+        << max_friction_coefficient(model.friction) << ", alpha_c = " << critical_inclination(model.friction)
+        << " rad): the top slides downhill";
+    st.reason = why.str();
+    st.f_hat = Eigen::Vector3d::UnitZ();
+    st.omega.setZero();
+    return st;
+  }
+  st.exists = true;
+  set_sleeping_velocity(model, st);
+  return st;
+}
+
+StationaryState stationary_state_on_root(const Model& model, double spin, double slip) {
+  StationaryState st;
+  if (!sleeping_geometry(model, spin, st)) return st;
+  st.exists = true;
+  st.slip = slip;
+  set_sleeping_velocity(model, st);
   return st;
 }
 

@@ -1,0 +1,426 @@
+// top_sim_stability SCENE.yaml [options]: the linear stability of the scene's sleeping state (physics.md section
+// 10, include/top_sim/stability.hpp); see kUsage below, docs/interfaces.md and docs/analysis.md.
+// Exit 0 ok, 1 an output (JSON, plot) not written, 2 bad scene or argument, 3 no sleeping state to analyse.
+#include <spawn.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <iomanip>
+#include <iostream>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "top_sim/data_path.hpp"
+#include "top_sim/format.hpp"
+#include "top_sim/limits.hpp"
+#include "top_sim/scene.hpp"
+#include "top_sim/stability.hpp"
+
+extern char** environ;
+
+namespace {
+
+using top_sim::Eigenvalue;
+using top_sim::StabilityResult;
+
+const char* kUsage =
+    "usage: top_sim_stability SCENE.yaml [--spin W] [--json FILE|-] [--sweep-alpha A0:A1:N]\n"
+    "                         [--sweep-spin W0:W1:N] [--plot FILE.png]\n"
+    "  Linear stability of the scene's sleeping state (physics.md section 10): eigenvalues of the Jacobian of the\n"
+    "  right-hand side over u, f_hat (tangent plane), omega (and nu with a rotor), classified.\n"
+    "  --spin W               shell spin omega* [rad/s], nonzero, |W| <= 1e6 (default: the scene's initial.spin);\n"
+    "                         a rotor keeps the scene's absolute rotor spin\n"
+    "  --json FILE            the analysis at --spin as JSON (- = standard output)\n"
+    "  --sweep-alpha A0:A1:N  spectrum at N inclinations from A0 to A1 (0 < A0 <= A1 < pi/2, N in [1, 10000]), and\n"
+    "                         alpha_c located where stability is lost (bisection along the slip branch from A0)\n"
+    "  --sweep-spin W0:W1:N   spectrum at N shell spins from W0 to W1 (|W| <= 1e6, N in [1, 10000]) at the scene's\n"
+    "                         alpha, and the spin windows where nutation Re > 0 or any Re > 0\n"
+    "  --plot FILE.png        draw the sweep(s) (python3 with matplotlib: scripts/plots/stability.py)\n"
+    "Exit status: 0 ok; 1 JSON or plot not written; 2 bad scene or argument; 3 no sleeping state to analyse at the\n"
+    "scene's alpha and --spin (above alpha_c, or a top that does not move; the message says which).\n";
+
+// Where the human-readable report goes: standard output, or standard error when the JSON goes there.
+std::ostream* report = &std::cout;
+
+struct BadArgument {
+  std::string message;
+};
+
+double number(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw BadArgument{flag + " = '" + text + "': not a finite number"};
+  return v;
+}
+
+struct Range {
+  double from = 0.0, to = 0.0;
+  int count = 0;
+};
+
+// A0:A1:N with both ends admitted by `ok` (described by `range`) and N an integer in [1, 10000].
+template <class Ok>
+Range parse_range(const std::string& flag, const std::string& text, Ok ok, const std::string& range) {
+  std::vector<std::string> parts;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ':');) parts.push_back(item);
+  if (parts.size() != 3 || text.back() == ':')
+    throw BadArgument{flag + " = '" + text + "': expected FROM:TO:N"};
+  Range r{number(flag, parts[0]), number(flag, parts[1]), 0};
+  const double n = number(flag, parts[2]);
+  if (!ok(r.from) || !ok(r.to)) throw BadArgument{flag + " = '" + text + "': FROM and TO must be " + range};
+  if (r.to < r.from) throw BadArgument{flag + " = '" + text + "': needs FROM <= TO"};
+  if (n < 1 || n > 10000 || n != std::floor(n))
+    throw BadArgument{flag + " = '" + text + "': N must be an integer in [1, 10000]"};
+  r.count = static_cast<int>(n);
+  return r;
+}
+
+struct Arguments {
+  std::string scene_path, json_path, plot_path;
+  std::optional<double> spin;
+  std::optional<Range> sweep_alpha, sweep_spin;
+};
+
+bool admissible_alpha(double a) { return a > 0.0 && a < M_PI / 2; }
+bool admissible_spin(double w) { return std::abs(w) <= top_sim::kMaxSpin; }
+
+// Reads the command line (throws BadArgument); false when it asked for --help.
+bool parse_arguments(int argc, char** argv, Arguments& args) {
+  const std::string spin_range = "in [-1e6, 1e6] [rad/s]";
+  for (int i = 1; i < argc; ++i) {
+    const std::string a = argv[i];
+    auto value = [&]() -> std::string {
+      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
+      return argv[++i];
+    };
+    if (a == "-h" || a == "--help") return false;
+    if (a == "--spin") {
+      const std::string text = value();
+      const double w = number(a, text);
+      if (w == 0.0 || !admissible_spin(w)) throw BadArgument{a + " = '" + text + "': must be nonzero and " + spin_range};
+      args.spin = w;
+    } else if (a == "--json") {
+      args.json_path = value();
+    } else if (a == "--plot") {
+      args.plot_path = value();
+    } else if (a == "--sweep-alpha") {
+      args.sweep_alpha = parse_range(a, value(), admissible_alpha, "in (0, pi/2) [rad]");
+    } else if (a == "--sweep-spin") {
+      args.sweep_spin = parse_range(a, value(), admissible_spin, spin_range);
+    } else if (!a.empty() && a[0] == '-') {
+      throw BadArgument{"unknown option '" + a + "'"};
+    } else if (args.scene_path.empty()) {
+      args.scene_path = a;
+    } else {
+      throw BadArgument{"more than one scene file ('" + args.scene_path + "', '" + a + "')"};
+    }
+  }
+  if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
+  if (!args.plot_path.empty() && !args.sweep_alpha && !args.sweep_spin)
+    throw BadArgument{"--plot = '" + args.plot_path + "': needs --sweep-alpha or --sweep-spin (it draws the sweeps)"};
+  return true;
+}
+
+std::string num(double v) { return top_sim::format_number(v); }
+
+std::string complex_text(Eigenvalue v) {
+  std::ostringstream os;
+  os << std::setprecision(7) << v.real();
+  if (v.imag() != 0.0) os << (v.imag() > 0 ? " + " : " - ") << std::abs(v.imag()) << "i";
+  return os.str();
+}
+
+// The single analysis, human-readable.
+void print_analysis(const top_sim::Model& model, const StabilityResult& r) {
+  (*report) << std::setprecision(7) << "sleeping state: alpha " << r.alpha << " rad, shell spin " << r.spin << " rad/s";
+  if (model.top.has_rotor) (*report) << ", rotor spin " << r.rotor_spin << " rad/s";
+  (*report) << ", s* " << r.slip << "\n";
+  (*report) << "eigenvalues [1/s] of the Jacobian over u, f_hat (tangent plane), omega" << (model.top.has_rotor ? ", nu" : "")
+            << ":\n  zero (free spin)  " << complex_text(r.zero) << "\n  precession        "
+            << complex_text(r.modes.precession) << " (and conjugate)\n  nutation          "
+            << complex_text(r.modes.nutation) << " (and conjugate)\n";
+  for (const Eigenvalue& v : r.modes.friction) (*report) << "  friction          " << complex_text(v) << "\n";
+  for (const Eigenvalue& v : r.modes.bearing) (*report) << "  bearing           " << complex_text(v) << "\n";
+  (*report) << "stable: " << (r.stable ? "yes" : "no") << " (largest Re but the zero one " << r.max_real
+            << " 1/s; stable below -1e-7)\n";
+  (*report) << "relaxation time 1/|Re precession|: " << r.relaxation_time << " s"
+            << (r.modes.precession.real() > 0.0 ? " (a growth time: Re precession > 0)" : "") << "\n";
+  (*report) << "finite-difference error of Re precession (step h against 2h): " << r.precession_error << " 1/s"
+            << (r.resolved ? "" : "  WARNING: above 1 % of Re precession, not resolved in double precision") << "\n";
+  if (r.residual > 1e-3)
+    (*report) << "note: the state is not an equilibrium (|F| = " << r.residual << ")"
+              << (model.top.has_rotor ? ": the rotor's bearing drags the spin" : "")
+              << "; this is the spectrum of the frozen state\n";
+}
+
+std::string pair_json(Eigenvalue v) { return "[" + num(v.real()) + ", " + num(v.imag()) + "]"; }
+
+std::string analysis_json(const StabilityResult& r) {
+  std::ostringstream os;
+  os << "{\n  \"eigenvalues\": [";
+  for (std::size_t i = 0; i < r.eigenvalues.size(); ++i) os << (i ? ", " : "") << pair_json(r.eigenvalues[i]);
+  os << "],\n  \"modes\": {\"precession\": " << pair_json(r.modes.precession)
+     << ", \"nutation\": " << pair_json(r.modes.nutation) << ", \"friction\": [";
+  for (std::size_t i = 0; i < r.modes.friction.size(); ++i) os << (i ? ", " : "") << pair_json(r.modes.friction[i]);
+  os << "]},\n  \"stable\": " << (r.stable ? "true" : "false") << ",\n  \"relaxation_time\": "
+     << (std::isfinite(r.relaxation_time) ? num(r.relaxation_time) : "null") << ",\n  \"spin\": " << num(r.spin)
+     << ",\n  \"alpha\": " << num(r.alpha) << "\n}\n";
+  return os.str();
+}
+
+bool write_text(const std::string& path, const std::string& text, const std::string& flag) {
+  if (path == "-") {
+    std::cout << text << std::flush;
+    return static_cast<bool>(std::cout);
+  }
+  std::ofstream out(path);
+  out << text;
+  out.close();
+  if (!out) std::cerr << "top_sim_stability: " << flag << " = '" << path << "': cannot write\n";
+  return static_cast<bool>(out);
+}
+
+// One row of a sweep: the table on stdout and the plot's CSV.
+struct SweepRow {
+  const char* sweep;
+  StabilityResult r;
+};
+
+double max_friction_real(const StabilityResult& r) {
+  double m = -INFINITY;
+  for (const Eigenvalue& v : r.modes.friction) m = std::max(m, v.real());
+  return m;
+}
+
+void print_row(const StabilityResult& r, double parameter) {
+  (*report) << std::setprecision(6) << std::setw(12) << parameter;
+  if (!r.exists) {
+    (*report) << "  no sleeping state: " << r.reason << "\n";
+    return;
+  }
+  (*report) << std::setw(11) << r.slip << std::setw(14) << r.modes.precession.real() << std::setw(11)
+            << r.modes.precession.imag() << std::setw(13) << r.modes.nutation.real() << std::setw(11)
+            << r.modes.nutation.imag() << std::setw(14) << max_friction_real(r) << std::setw(8)
+            << (r.stable ? "yes" : "no") << std::setw(13) << r.relaxation_time << (r.resolved ? "" : "  (unresolved)")
+            << "\n";
+}
+
+void print_header(const char* parameter) {
+  (*report) << std::setw(12) << parameter << std::setw(11) << "s*" << std::setw(14) << "Re_prec" << std::setw(11)
+            << "Im_prec" << std::setw(13) << "Re_nut" << std::setw(11) << "Im_nut" << std::setw(14) << "maxRe_fric"
+            << std::setw(8) << "stable" << std::setw(13) << "relax_time" << "\n";
+}
+
+std::vector<SweepRow> sweep_alpha(const top_sim::Scene& scene, double spin, const Range& range) {
+  std::vector<SweepRow> rows;
+  (*report) << "\nsweep over alpha [rad] at shell spin " << spin << " rad/s (eigenvalues in 1/s, times in s):\n";
+  print_header("alpha");
+  for (int i = 0; i < range.count; ++i) {
+    const double alpha = range.count == 1 ? range.from : range.from + (range.to - range.from) * i / (range.count - 1);
+    top_sim::Model m = scene.model;
+    m.plane = top_sim::make_plane(alpha, m.plane.gravity);
+    rows.push_back({"alpha", top_sim::sleeping_stability(m, spin, scene.initial.rotor_spin)});
+    print_row(rows.back().r, alpha);
+  }
+  return rows;
+}
+
+// alpha_c from the eigenvalue crossing, next to the analytic values; returns the located alpha_c (NaN if none).
+double report_alpha_c(const top_sim::Scene& scene, double spin, double alpha0) {
+  top_sim::Model m = scene.model;
+  m.plane = top_sim::make_plane(alpha0, m.plane.gravity);
+  const top_sim::StabilityCrossing c = top_sim::locate_stability_loss(m, spin, scene.initial.rotor_spin);
+  (*report) << std::setprecision(10);
+  if (c.found)
+    (*report) << "alpha_c located (stability lost along the slip branch from alpha " << alpha0 << ", " << c.bisections
+              << " bisections in s): s = " << c.slip << ", alpha = " << c.alpha << " rad; the crossing mode: "
+              << c.mode << " (" << complex_text(c.eigenvalue) << " 1/s at the first unstable slip of the scan)\n";
+  else
+    (*report) << "alpha_c not located: " << c.reason << "\n";
+  (*report) << "alpha_c analytic (critical_inclination, stationary.hpp): " << top_sim::critical_inclination(m.friction)
+            << " rad";
+  if (m.friction.kind == top_sim::FrictionLawKind::paper)
+    (*report) << "; atan(mu_c) = " << std::atan(m.friction.mu_c) << " rad; s_c = " << m.friction.s_c;
+  (*report) << "\n";
+  return c.found ? c.alpha : NAN;
+}
+
+std::vector<SweepRow> sweep_spin(const top_sim::Scene& scene, const Range& range) {
+  std::vector<SweepRow> rows;
+  (*report) << "\nsweep over the shell spin [rad/s] at alpha " << scene.model.plane.inclination << " rad";
+  if (scene.model.top.has_rotor) (*report) << ", rotor at " << scene.initial.rotor_spin << " rad/s";
+  (*report) << " (eigenvalues in 1/s, times in s):\n";
+  print_header("spin");
+  for (int i = 0; i < range.count; ++i) {
+    const double w = range.count == 1 ? range.from : range.from + (range.to - range.from) * i / (range.count - 1);
+    rows.push_back({"spin", top_sim::sleeping_stability(scene.model, w, scene.initial.rotor_spin)});
+    print_row(rows.back().r, w);
+  }
+  return rows;
+}
+
+// The windows where the watched real part is > 0; returned as "lo:hi,lo:hi" for the plot.
+std::string report_windows(const top_sim::Scene& scene, const Range& range, top_sim::WatchedMode watched,
+                           const char* what) {
+  const auto windows = top_sim::unstable_spin_windows(scene.model, scene.initial.rotor_spin, range.from, range.to,
+                                                      range.count, watched);
+  (*report) << std::setprecision(7) << "spin windows where " << what << " > 0 (edges bisected):";
+  std::string list;
+  for (const auto& w : windows) {
+    (*report) << " [" << w.lower << ", " << w.upper << "] (largest " << w.max_real << " 1/s at " << w.at_spin << ")";
+    list += (list.empty() ? "" : ",") + num(w.lower) + ":" + num(w.upper);
+  }
+  (*report) << (windows.empty() ? " none" : "") << "\n";
+  return list;
+}
+
+void write_sweep_csv(std::ostream& os, const std::vector<SweepRow>& rows) {
+  os << "sweep,alpha,spin,exists,stable,prec_re,prec_im,nut_re,nut_im,fric_re_max,fric_re_min,max_real\n";
+  for (const SweepRow& row : rows) {
+    const StabilityResult& r = row.r;
+    double fric_min = INFINITY;
+    for (const Eigenvalue& v : r.modes.friction) fric_min = std::min(fric_min, v.real());
+    os << row.sweep << "," << num(r.alpha) << "," << num(r.spin) << "," << r.exists << "," << r.stable;
+    if (r.exists)
+      os << "," << num(r.modes.precession.real()) << "," << num(r.modes.precession.imag()) << ","
+         << num(r.modes.nutation.real()) << "," << num(r.modes.nutation.imag()) << "," << num(max_friction_real(r))
+         << "," << num(fric_min) << "," << num(r.max_real) << "\n";
+    else
+      os << ",nan,nan,nan,nan,nan,nan,nan\n";
+  }
+}
+
+// scripts/plots/stability.py: $TOP_SIM_PLOTS_DIR, else share/top_sim/plots next to the data (install tree), else
+// the sources' scripts/plots (the build tree's config is a link into the sources).
+std::string plot_script() {
+  std::vector<std::string> candidates;
+  if (const char* dir = std::getenv("TOP_SIM_PLOTS_DIR")) candidates.push_back(std::string(dir) + "/stability.py");
+  const std::string config = top_sim::default_config_dir();
+  if (!config.empty()) {
+    candidates.push_back(config + "/../plots/stability.py");
+    candidates.push_back(config + "/../scripts/plots/stability.py");
+  }
+  for (const auto& c : candidates)
+    if (std::filesystem::is_regular_file(c)) return c;
+  return "";
+}
+
+// Runs python3 on the plot script; false (after the message) when the PNG was not written.
+bool draw(const std::string& csv, const std::string& png, const std::vector<std::string>& extra) {
+  const std::string script = plot_script();
+  if (script.empty()) {
+    std::cerr << "top_sim_stability: --plot = '" << png << "': scripts/plots/stability.py not found "
+              << "(set TOP_SIM_PLOTS_DIR to the directory holding it)\n";
+    return false;
+  }
+  // Debian's python3 has python3-matplotlib; a python3 first on PATH (pyenv, conda) may lack it.
+  const char* chosen = std::getenv("TOP_SIM_PYTHON");
+  const std::string python = chosen ? chosen : std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
+  std::vector<std::string> words = {python, script, csv, png};
+  words.insert(words.end(), extra.begin(), extra.end());
+  std::vector<char*> argv;
+  for (auto& w : words) argv.push_back(w.data());
+  argv.push_back(nullptr);
+  report->flush();
+  pid_t pid;
+  int status = 0;
+  if (posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0 || waitpid(pid, &status, 0) < 0 ||
+      !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
+    std::cerr << "top_sim_stability: --plot = '" << png << "': " << python << " " << script
+              << " failed (is python3-matplotlib installed? TOP_SIM_PYTHON names another interpreter)\n";
+    return false;
+  }
+  return true;
+}
+
+bool load(const std::string& path, top_sim::Scene& scene) {
+  try {
+    scene = top_sim::load_scene(path);
+  } catch (const std::exception& e) {  // SceneError names file, key, value and range
+    std::cerr << "top_sim_stability: bad scene: " << e.what() << "\n";
+    return false;
+  }
+  for (const auto& w : scene.warnings) std::cerr << "top_sim_stability: warning: " << w << "\n";
+  return true;
+}
+
+// The sweeps, their reports and the plot; false when the plot could not be written.
+bool run_sweeps(const Arguments& args, const top_sim::Scene& scene, double spin) {
+  std::vector<SweepRow> rows;
+  std::vector<std::string> extra;
+  if (args.sweep_alpha) {
+    rows = sweep_alpha(scene, spin, *args.sweep_alpha);
+    const double located = report_alpha_c(scene, spin, args.sweep_alpha->from);
+    extra.insert(extra.end(), {"--alpha-c=" + num(located),
+                               "--alpha-c-analytic=" + num(top_sim::critical_inclination(scene.model.friction))});
+  }
+  if (args.sweep_spin) {
+    const auto spins = sweep_spin(scene, *args.sweep_spin);
+    rows.insert(rows.end(), spins.begin(), spins.end());
+    extra.push_back("--nutation-windows=" +
+                    report_windows(scene, *args.sweep_spin, top_sim::WatchedMode::nutation, "Re nutation"));
+    report_windows(scene, *args.sweep_spin, top_sim::WatchedMode::any, "the largest Re but the zero one");
+  }
+  if (args.plot_path.empty()) return true;
+  char dir_template[] = "/tmp/top_sim_stability_XXXXXX";
+  const char* dir = mkdtemp(dir_template);
+  if (!dir) {
+    std::cerr << "top_sim_stability: --plot: cannot create a temporary directory\n";
+    return false;
+  }
+  const std::string csv = std::string(dir) + "/sweep.csv";
+  std::ofstream out(csv);
+  write_sweep_csv(out, rows);
+  out.close();
+  extra.push_back("--title=" + scene.source);
+  const bool ok = out && draw(csv, args.plot_path, extra);
+  std::error_code ec;
+  std::filesystem::remove_all(dir, ec);
+  if (ok) (*report) << "plot: " << args.plot_path << "\n";
+  return ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Arguments args;
+  try {
+    if (!parse_arguments(argc, argv, args)) {
+      std::cout << kUsage;
+      return 0;
+    }
+  } catch (const BadArgument& e) {
+    std::cerr << "top_sim_stability: " << e.message << "\n" << kUsage;
+    return 2;
+  }
+  top_sim::Scene scene;
+  if (!load(args.scene_path, scene)) return 2;
+  const double spin = args.spin.value_or(scene.initial.spin);
+  if (spin == 0.0) {
+    std::cerr << "top_sim_stability: the scene's initial.spin is 0: give a nonzero --spin\n";
+    return 2;
+  }
+  if (args.json_path == "-") report = &std::cerr;
+  (*report) << "scene: " << scene.source << "\n";
+  const StabilityResult r = top_sim::sleeping_stability(scene.model, spin, scene.initial.rotor_spin);
+  bool written = true;
+  if (r.exists) {
+    print_analysis(scene.model, r);
+    if (!args.json_path.empty()) written = write_text(args.json_path, analysis_json(r), "--json");
+  } else {
+    std::cerr << "top_sim_stability: no sleeping state to analyse at alpha " << num(r.alpha) << " rad, spin "
+              << num(spin) << " rad/s: " << r.reason << "\n";
+  }
+  written = run_sweeps(args, scene, spin) && written;
+  if (!r.exists) return 3;
+  return written ? 0 : 1;
+}

@@ -1,0 +1,167 @@
+// The command line top_sim_stability (docs/interfaces.md): exit codes, messages naming argument, value and range,
+// the JSON fields, the sweeps' alpha_c and spin windows, the plot.
+#define BOOST_BIND_GLOBAL_PLACEHOLDERS
+#include <gtest/gtest.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <boost/property_tree/json_parser.hpp>
+#include <boost/property_tree/ptree.hpp>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include "test_util.hpp"
+
+namespace {
+
+namespace pt = boost::property_tree;
+
+struct CliResult {
+  int exit_code = -1;
+  std::string out, err;
+};
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+struct ScratchDir {
+  std::string path;
+  ScratchDir() {
+    char tmpl[] = "/tmp/top_sim_stability_test_XXXXXX";
+    path = mkdtemp(tmpl);
+  }
+  ~ScratchDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path, ec);
+  }
+};
+
+const std::string& scratch() {
+  static const ScratchDir dir;
+  return dir.path;
+}
+
+CliResult run(const std::string& args) {
+  const std::string out = scratch() + "/stdout.txt", err = scratch() + "/stderr.txt";
+  const std::string cmd = std::string("'") + TOP_SIM_TEST_STABILITY_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "'";
+  const int status = std::system(cmd.c_str());
+  CliResult r;
+  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+std::string scene(const std::string& name) { return "'" + top_sim_test::scene_path(name) + "'"; }
+
+TEST(StabilityCli, BadArgumentsExitTwoNamingArgumentValueAndRange) {
+  struct Case {
+    std::string args, says, range;
+  };
+  const Case cases[] = {
+      {" --spin 0", "--spin = '0'", "nonzero and in [-1e6, 1e6]"},
+      {" --spin 2e6", "--spin = '2e6'", "in [-1e6, 1e6]"},
+      {" --spin fast", "--spin = 'fast'", "not a finite number"},
+      {" --sweep-alpha 0:0.2:10", "--sweep-alpha = '0:0.2:10'", "in (0, pi/2)"},
+      {" --sweep-alpha 0.1:0.2:0", "--sweep-alpha = '0.1:0.2:0'", "an integer in [1, 10000]"},
+      {" --sweep-alpha 0.2:0.1:5", "--sweep-alpha = '0.2:0.1:5'", "FROM <= TO"},
+      {" --sweep-spin -1:1", "--sweep-spin = '-1:1'", "FROM:TO:N"},
+      {" --sweep-spin -2e6:1:3", "--sweep-spin = '-2e6:1:3'", "in [-1e6, 1e6]"},
+      {" --plot x.png", "--plot = 'x.png'", "needs --sweep-alpha or --sweep-spin"},
+      {" --json", "--json", "needs a value"},
+      {" --frobnicate", "'--frobnicate'", "unknown option"},
+  };
+  for (const Case& c : cases) {
+    const CliResult r = run(scene("default") + c.args);
+    EXPECT_EQ(r.exit_code, 2) << c.args << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, c.says)) << c.args << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, c.range)) << c.args << "\n" << r.err;
+  }
+  CliResult r = run("");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "no scene file")) << r.err;
+  r = run("'" + top_sim_test::fixture_path("bad_inclination") + "'");
+  EXPECT_EQ(r.exit_code, 2);
+  EXPECT_TRUE(contains(r.err, "plane.inclination")) << r.err;
+}
+
+TEST(StabilityCli, NoSleepingStateExitsThreeWithTheReason) {
+  const CliResult r = run(scene("supercritical"));
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(contains(r.err, "no sleeping state to analyse")) << r.err;
+  EXPECT_TRUE(contains(r.err, "slides downhill")) << r.err;
+}
+
+TEST(StabilityCli, JsonHasExactlyTheDocumentedFields) {
+  const std::string path = scratch() + "/default.json";
+  const CliResult r = run(scene("default") + " --json '" + path + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  pt::ptree j;
+  ASSERT_NO_THROW(pt::read_json(path, j)) << slurp(path);
+  std::set<std::string> keys;
+  for (const auto& kv : j) keys.insert(kv.first);
+  EXPECT_EQ(keys, (std::set<std::string>{"eigenvalues", "modes", "stable", "relaxation_time", "spin", "alpha"}));
+  std::set<std::string> modes;
+  for (const auto& kv : j.get_child("modes")) modes.insert(kv.first);
+  EXPECT_EQ(modes, (std::set<std::string>{"precession", "nutation", "friction"}));
+  EXPECT_EQ(j.get_child("eigenvalues").size(), 7u);
+  for (const auto& e : j.get_child("eigenvalues")) EXPECT_EQ(e.second.size(), 2u);  // [re, im]
+  EXPECT_EQ(j.get_child("modes.friction").size(), 2u);
+  const auto& prec = j.get_child("modes.precession");
+  EXPECT_NEAR(prec.front().second.get_value<double>(), -0.029, 0.0005);
+  EXPECT_EQ(j.get<std::string>("stable"), "true");
+  EXPECT_NEAR(j.get<double>("relaxation_time"), 34.03, 0.01);
+  EXPECT_EQ(j.get<double>("spin"), 200.0);
+  EXPECT_EQ(j.get<double>("alpha"), 0.1);
+  // --json - puts the JSON alone on standard output (the report goes to standard error).
+  const CliResult s = run(scene("default") + " --spin -400 --json -");
+  ASSERT_EQ(s.exit_code, 0) << s.err;
+  std::istringstream in(s.out);
+  ASSERT_NO_THROW(pt::read_json(in, j)) << s.out;
+  EXPECT_EQ(j.get<double>("spin"), -400.0);
+  EXPECT_TRUE(contains(s.err, "relaxation time")) << s.err;
+}
+
+TEST(StabilityCli, SweepsReportAlphaCAndTheGyrostatWindow) {
+  CliResult r = run(scene("default") + " --sweep-alpha 0.05:0.25:5");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "alpha_c located")) << r.out;
+  EXPECT_TRUE(contains(r.out, "alpha = 0.2449786631 rad")) << r.out;
+  EXPECT_TRUE(contains(r.out, "atan(mu_c) = 0.2449786631")) << r.out;
+  EXPECT_TRUE(contains(r.out, "no sleeping state")) << r.out;  // alpha 0.25 > alpha_c
+  r = run(scene("gyro_reversal") + " --sweep-spin -1:1:21");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "spin windows where Re nutation > 0 (edges bisected): [-0.55189")) << r.out;
+}
+
+TEST(StabilityCli, PlotWritesAPng) {
+  if (std::system("/usr/bin/python3 -c 'import matplotlib' 2>/dev/null") != 0) GTEST_SKIP() << "no python3-matplotlib";
+  const std::string png = scratch() + "/sweep.png";
+  const CliResult r = run(scene("default") + " --sweep-alpha 0.05:0.24:4 --plot '" + png + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_EQ(slurp(png).substr(0, 4), "\x89PNG");
+}
+
+TEST(StabilityCli, PlotThatFailsExitsOne) {
+  // The plot script failing (here: an interpreter that always fails) is exit 1, after the sweep's report.
+  const std::string cmd = "TOP_SIM_PYTHON=/bin/false ";
+  const std::string out = scratch() + "/o.txt", err = scratch() + "/e.txt";
+  const int status = std::system((cmd + "'" + TOP_SIM_TEST_STABILITY_BINARY + "' " + scene("default") +
+                                  " --sweep-alpha 0.05:0.24:4 --plot '" + scratch() + "/y.png' >'" + out + "' 2>'" + err + "'")
+                                     .c_str());
+  EXPECT_EQ(WEXITSTATUS(status), 1);
+  EXPECT_TRUE(contains(slurp(err), "--plot = '")) << slurp(err);
+  EXPECT_TRUE(contains(slurp(out), "alpha_c located")) << slurp(out);
+}
+
+}  // namespace
