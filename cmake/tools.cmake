@@ -2,7 +2,8 @@
 find_package(Threads REQUIRED)
 
 # The per-point sweep logic lives in the shared CLI library so the paper tests run the same code.
-target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sweep_point.cpp)
+target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sweep_point.cpp
+  ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/plot.cpp)  # --plot of top_sim_fit and top_sim_stability
 
 add_executable(top_sim_sweep src/cli/top_sim_sweep.cpp)
 target_link_libraries(top_sim_sweep top_sim_cli_common Threads::Threads)

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "fit_data.hpp"
+#include "plot.hpp"
 #include "run_output.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -121,21 +122,16 @@ bool plot_stationary(const Arguments& a, const std::vector<top_sim::StationaryMe
     for (int i = 0; i <= 200; ++i) c << i / 200.0 << "," << raw_friction_coefficient(law, i / 200.0) << "\n";
     if (!p || !c) return false;
   }
-  const char* env = std::getenv("TOP_SIM_PLOT_DIR");
-  // share/top_sim/plots next to share/top_sim/config (textually: config is a link in the build tree).
-  const std::string dir = env ? env : std::filesystem::path(default_config_dir()).parent_path().string() + "/plots";
   std::ostringstream label;
   label << std::setprecision(3) << a.law << " fit:";
   for (std::size_t i = 0; i < r.names.size(); ++i)
     label << " " << r.names[i] << " " << r.values[static_cast<Eigen::Index>(i)] << " +- "
           << r.errors[static_cast<Eigen::Index>(i)];
-  const std::string cmd = "python3 '" + dir + "/fit_stationary.py' '" + points_csv + "' '" + curve_csv + "' '" +
-                          a.plot + "' '" + label.str() + "'";
-  const int rc = std::system(cmd.c_str());
+  const bool drawn =
+      top_sim_cli::run_plot("top_sim_fit", "fit_stationary.py", {points_csv, curve_csv, a.plot, label.str()}, a.plot);
   std::filesystem::remove(points_csv);
   std::filesystem::remove(curve_csv);
-  if (rc != 0) std::cerr << "top_sim_fit: --plot = '" << a.plot << "': the plot script failed (" << cmd << ")\n";
-  return rc == 0;
+  return drawn;
 }
 
 bool write_json(const std::string& path, const std::string& json) {

@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "plot.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
@@ -299,47 +300,12 @@ void write_sweep_csv(std::ostream& os, const std::vector<SweepRow>& rows) {
   }
 }
 
-// scripts/plots/stability.py: $TOP_SIM_PLOTS_DIR, else share/top_sim/plots next to the data (install tree), else
-// the sources' scripts/plots (the build tree's config is a link into the sources).
-std::string plot_script() {
-  std::vector<std::string> candidates;
-  if (const char* dir = std::getenv("TOP_SIM_PLOTS_DIR")) candidates.push_back(std::string(dir) + "/stability.py");
-  const std::string config = top_sim::default_config_dir();
-  if (!config.empty()) {
-    candidates.push_back(config + "/../plots/stability.py");
-    candidates.push_back(config + "/../scripts/plots/stability.py");
-  }
-  for (const auto& c : candidates)
-    if (std::filesystem::is_regular_file(c)) return c;
-  return "";
-}
-
-// Runs python3 on the plot script; false (after the message) when the PNG was not written.
+// Runs scripts/plots/stability.py; false (after the message) when the PNG was not written.
 bool draw(const std::string& csv, const std::string& png, const std::vector<std::string>& extra) {
-  const std::string script = plot_script();
-  if (script.empty()) {
-    std::cerr << "top_sim_stability: --plot = '" << png << "': scripts/plots/stability.py not found "
-              << "(set TOP_SIM_PLOTS_DIR to the directory holding it)\n";
-    return false;
-  }
-  // Debian's python3 has python3-matplotlib; a python3 first on PATH (pyenv, conda) may lack it.
-  const char* chosen = std::getenv("TOP_SIM_PYTHON");
-  const std::string python = chosen ? chosen : std::filesystem::exists("/usr/bin/python3") ? "/usr/bin/python3" : "python3";
-  std::vector<std::string> words = {python, script, csv, png};
-  words.insert(words.end(), extra.begin(), extra.end());
-  std::vector<char*> argv;
-  for (auto& w : words) argv.push_back(w.data());
-  argv.push_back(nullptr);
   report->flush();
-  pid_t pid;
-  int status = 0;
-  if (posix_spawnp(&pid, python.c_str(), nullptr, nullptr, argv.data(), environ) != 0 || waitpid(pid, &status, 0) < 0 ||
-      !WIFEXITED(status) || WEXITSTATUS(status) != 0) {
-    std::cerr << "top_sim_stability: --plot = '" << png << "': " << python << " " << script
-              << " failed (is python3-matplotlib installed? TOP_SIM_PYTHON names another interpreter)\n";
-    return false;
-  }
-  return true;
+  std::vector<std::string> args = {csv, png};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return top_sim_cli::run_plot("top_sim_stability", "stability.py", args, png);
 }
 
 bool load(const std::string& path, top_sim::Scene& scene) {
