@@ -14,7 +14,7 @@ add_dependencies(top_sim_teleop ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXP
 
 install(TARGETS top_sim_teleop RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # rviz/ is installed by ros.cmake; the benchmark and screenshot helpers run from the source tree or installed.
-catkin_install_python(PROGRAMS scripts/top_sim_launch scripts/bench_node.py scripts/grab_window.py scripts/rviz_layout.py
+catkin_install_python(PROGRAMS scripts/top_sim_launch scripts/top_sim_bag_csv scripts/bench_node.py scripts/grab_window.py scripts/rviz_layout.py
   DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 # bench_node.py imports its helpers from the module beside it.
 install(FILES scripts/node_harness.py DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
