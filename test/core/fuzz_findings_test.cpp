@@ -77,3 +77,21 @@ TEST(FuzzFindings, BudgetIsKeptWhenEveryStepEndsInAnEvent) {
 }
 
 }  // namespace
+
+namespace {
+
+using top_sim_test::scene_from;
+
+// A key with a NUL character ("\0" in a double-quoted YAML key) ended up in the message, and what() (a C string)
+// stopped there: "fuzz_scene.yaml: " without the problem. Control characters are shown escaped.
+TEST(FuzzFindings, SceneErrorShowsNulCharactersEscaped) {
+  try {
+    scene_from("top: aluminium\n\"a\\0b\": 1\n", "nul.yaml");
+    ADD_FAILURE() << "a key with a NUL accepted";
+  } catch (const top_sim::SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find("a\\x00b: unknown key"), std::string::npos) << message;
+  }
+}
+
+}  // namespace
