@@ -5,7 +5,7 @@
 # findings. A finding (crash-*, timeout-*, oom-*, leak-*) lands in $TOP_SIM_BUILD-fuzz/fuzz/<target>/findings/;
 # nothing is written into test/fuzz/corpus (add a fixed finding there by hand, named finding-*).
 #   usage: scripts/fuzz.sh [seconds per target, default 60] [target ...]   (targets: scene_loader command step)
-#   environment: TOP_SIM_FUZZ_TIMEOUT (s per input, default 10), TOP_SIM_FUZZ_RSS_MB (default 2048)
+#   environment: TOP_SIM_FUZZ_TIMEOUT (s per input, default 30), TOP_SIM_FUZZ_RSS_MB (default 2048)
 # Exit status: 0 when no target found anything, 1 when one did, 2 for a bad argument or a failed build.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -16,7 +16,8 @@ seconds=${1:-60}
 targets=("$@")
 [ "${#targets[@]}" -gt 0 ] || targets=(scene_loader command step)
 build=$TOP_SIM_BUILD-fuzz
-timeout_per_input=${TOP_SIM_FUZZ_TIMEOUT:-10}
+# Wall-clock, and nice 19 on a shared machine: the slowest inputs take ~2 s alone, 13 s were seen under load.
+timeout_per_input=${TOP_SIM_FUZZ_TIMEOUT:-30}
 rss_mb=${TOP_SIM_FUZZ_RSS_MB:-2048}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}

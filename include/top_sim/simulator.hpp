@@ -43,8 +43,8 @@ class Simulator {
 
   // Integrates to simulated time t (>= time()); applies due events and pending commands at step boundaries;
   // switches contact modes at located events; stops at a contact fault (time() then stays at the fault).
-  // With a finite budget (wall-clock seconds) it returns after the first step that exhausts it: false when it
-  // stopped short of t (time() < t, no fault), true otherwise. The state is always a consistent step boundary.
+  // With a finite budget (wall-clock seconds) it returns after the first step or event that exhausts it: false when
+  // it stopped short of t (time() < t, no fault), true otherwise. The state is always a consistent step boundary.
   bool advance_to(double t, double budget_seconds = std::numeric_limits<double>::infinity());
 
   // Validates and queues a command for the next step boundary; returns "" or the error message. Any thread.

@@ -244,6 +244,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
       budgeted ? Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
                                     std::max(budget_seconds, 0.0)))
                : Clock::time_point::max();
+  const double t_entry = t_;
   while (fault_ == ContactFault::none && t_ < t_target) {
     apply_pending();
     if (fault_ != ContactFault::none) break;
@@ -259,9 +260,12 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
           continue;  // the state is at the event; the stepper restarted there
         }
         if (t_scan >= t_stop) break;
-        if (budgeted && Clock::now() >= deadline && stepper_->time() > t_) {
-          y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
-          t_ = stepper_->time();
+        // Out of budget after a scanned step or a handled event (steps that all end in events count too).
+        if (budgeted && Clock::now() >= deadline && (stepper_->time() > t_ || t_ > t_entry)) {
+          if (stepper_->time() > t_) {
+            y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
+            t_ = stepper_->time();
+          }
           update_sample();
           return false;
         }
