@@ -42,9 +42,11 @@ run_target() {
   local extra=()
   [ -f "$TOP_SIM_REPO/test/fuzz/$name.dict" ] && extra+=("-dict=$TOP_SIM_REPO/test/fuzz/$name.dict")
   top_sim_log "fuzzing $name for $seconds s (log: $work/log.txt)"
+  local start=$SECONDS
   nice -n 19 "$build/bin/fuzz_$name" "$work/corpus" "${extra[@]}" -max_total_time="$seconds" \
     -timeout="$timeout_per_input" -rss_limit_mb="$rss_mb" -max_len=4096 -print_final_stats=1 \
     -artifact_prefix="$work/findings/" >"$work/log.txt" 2>&1 || true
+  echo $((SECONDS - start)) >"$work/seconds"   # a finding stops the target early
 }
 
 # One line from the log: the last status line's cov, ft and corpus, the final stats' executions and exec/s.
@@ -56,7 +58,7 @@ report_target() {
   execs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$work/log.txt")
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$work/log.txt")
   findings=$(find "$work/findings" -type f | wc -l)
-  printf '%-13s %8s s  executions %-10s exec/s %-6s cov %-6s ft %-7s corpus %-5s findings %s\n' "$name" "$seconds" \
+  printf '%-13s %6s s  executions %-10s exec/s %-6s cov %-6s ft %-7s corpus %-5s findings %s\n' "$name" "$(cat "$work/seconds")" \
     "${execs:-?}" "${rate:-?}" "${cov:-?}" "${ft:-?}" "$(find "$work/corpus" -type f | wc -l)" "$findings"
   [ "$findings" -eq 0 ] && ! grep -q -E '^==[0-9]+==ERROR|invariant broken|deadly signal' "$work/log.txt"
 }
