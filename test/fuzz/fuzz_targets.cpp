@@ -135,7 +135,7 @@ std::string check_simulator(const Simulator& sim, double t_begin, double t_end) 
   return "";
 }
 
-// Advances towards t_end one step per call (a budget of 0 s), at most kMaxSteps steps, checking after each.
+// Advances towards t_end one step or event per call (a budget of 0 s), at most kMaxSteps calls, checking after each.
 std::string advance_checked(Simulator& sim, double t_end) {
   const double t_begin = sim.time();
   int calls = 0;

@@ -2,7 +2,8 @@
 // seed replay in the GoogleTest suite (fuzz_seeds_test.cpp). Each returns "" for an admissible outcome and a
 // description of the broken invariant otherwise; the libFuzzer entries abort on it (require()).
 //
-// Every input ends in milliseconds: at most kMaxSimulatedTime of simulated time in at most kMaxSteps steps.
+// Every input is bounded: at most kMaxSimulatedTime of simulated time in at most kMaxSteps calls of advance_to
+// with a 0 s budget (one step or event each; milliseconds, at most ~2 s under ASan for a stalled run).
 #pragma once
 
 #include <cstddef>
@@ -12,7 +13,7 @@
 namespace top_sim::fuzz {
 
 constexpr double kMaxSimulatedTime = 1.0e-3;  // [s] simulated after a scene loads or a command is accepted
-constexpr int kMaxSteps = 64;                 // integrator steps per advance (Simulator::advance_to with budget 0)
+constexpr int kMaxSteps = 64;                 // advance_to(t, 0 s budget) calls per advance
 
 // Bytes as a YAML scene: parse_scene either throws SceneError with a message, or returns a scene whose initial
 // state is finite and that a Simulator runs for kMaxSimulatedTime to a finite state or a named fault.
