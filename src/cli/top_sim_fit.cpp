@@ -10,6 +10,7 @@
 #include <sstream>
 #include <string>
 
+#include "arguments.hpp"
 #include "fit_data.hpp"
 #include "plot.hpp"
 #include "run_output.hpp"
@@ -33,9 +34,7 @@ const char* kUsage =
     "  --sigma M    standard error of the positions [m] (default: estimated from the residuals)\n"
     "  --json FILE  the result as JSON (- for standard output)\n";
 
-struct BadArgument {
-  std::string message;
-};
+using top_sim_cli::BadArgument;
 
 struct Arguments {
   std::string kind, data, law = "paper", json, plot, scene;
@@ -187,15 +186,8 @@ int run_fit(const Arguments& a) {
 
 int main(int argc, char** argv) {
   Arguments args;
-  try {
-    if (!parse_arguments(argc, argv, args)) {
-      std::cout << kUsage;
-      return 0;
-    }
-  } catch (const BadArgument& e) {
-    std::cerr << "top_sim_fit: " << e.message << "\n" << kUsage;
-    return 2;
-  }
+  if (const auto done = top_sim_cli::parse_command_line("top_sim_fit", kUsage, parse_arguments, argc, argv, args))
+    return *done;
   try {
     return run_fit(args);
   } catch (const top_sim::FitError& e) {

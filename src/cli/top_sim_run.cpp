@@ -11,6 +11,7 @@
 #include <thread>
 #include <unistd.h>
 
+#include "arguments.hpp"
 #include "run_output.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/pacing.hpp"
@@ -36,9 +37,7 @@ const char* kUsage =
 
 constexpr double kMaxCsvRows = 1.0e8;
 
-struct BadArgument {
-  std::string message;
-};
+using top_sim_cli::BadArgument;
 
 double positive_number(const std::string& flag, const char* text) {
   char* end = nullptr;
@@ -217,15 +216,8 @@ bool csv_written(const std::string& path, std::ofstream& csv) {
 int main(int argc, char** argv) {
   using namespace top_sim;
   Arguments args;
-  try {
-    if (!parse_arguments(argc, argv, args)) {
-      std::cout << kUsage;
-      return 0;
-    }
-  } catch (const BadArgument& e) {
-    std::cerr << "top_sim_run: " << e.message << "\n" << kUsage;
-    return 2;
-  }
+  if (const auto done = top_sim_cli::parse_command_line("top_sim_run", kUsage, parse_arguments, argc, argv, args))
+    return *done;
 
   Scene scene;
   std::ofstream csv;

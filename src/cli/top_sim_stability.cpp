@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "arguments.hpp"
 #include "plot.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -50,9 +51,7 @@ const char* kUsage =
 // Where the human-readable report goes: standard output, or standard error when the JSON goes there.
 std::ostream* report = &std::cout;
 
-struct BadArgument {
-  std::string message;
-};
+using top_sim_cli::BadArgument;
 
 double number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
@@ -359,15 +358,8 @@ bool run_sweeps(const Arguments& args, const top_sim::Scene& scene, double spin)
 
 int main(int argc, char** argv) {
   Arguments args;
-  try {
-    if (!parse_arguments(argc, argv, args)) {
-      std::cout << kUsage;
-      return 0;
-    }
-  } catch (const BadArgument& e) {
-    std::cerr << "top_sim_stability: " << e.message << "\n" << kUsage;
-    return 2;
-  }
+  if (const auto done = top_sim_cli::parse_command_line("top_sim_stability", kUsage, parse_arguments, argc, argv, args))
+    return *done;
   top_sim::Scene scene;
   if (!load(args.scene_path, scene)) return 2;
   const double spin = args.spin.value_or(scene.initial.spin);

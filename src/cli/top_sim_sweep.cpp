@@ -19,6 +19,7 @@
 #include <thread>
 #include <vector>
 
+#include "arguments.hpp"
 #include "sweep_point.hpp"
 #include "top_sim/friction.hpp"
 
@@ -52,9 +53,7 @@ const char* kUsage =
     "  --threads N         worker threads, 1..1024 (default: all cores)\n"
     "  --config DIR        directory holding tops/ and planes/ (default: the installed config)\n";
 
-struct BadArgument {
-  std::string message;
-};
+using top_sim_cli::BadArgument;
 
 double parse_number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
@@ -262,15 +261,8 @@ int write_results(std::ostream& out, const std::vector<SweepResult>& results, un
 
 int main(int argc, char** argv) {
   Options opt;
-  try {
-    if (!parse_arguments(argc, argv, opt)) {
-      std::cout << kUsage;
-      return 0;
-    }
-  } catch (const BadArgument& e) {
-    std::cerr << "top_sim_sweep: " << e.message << "\n" << kUsage;
-    return 2;
-  }
+  if (const auto done = top_sim_cli::parse_command_line("top_sim_sweep", kUsage, parse_arguments, argc, argv, opt))
+    return *done;
 
   // The grid, every scene validated before any simulation starts.
   const std::vector<SweepPoint> grid = make_grid(opt);

@@ -2,8 +2,6 @@
 // Boost 1.74's property_tree pulls in boost/bind.hpp, which otherwise warns about its global placeholders.
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -17,58 +15,19 @@
 #include <string>
 #include <vector>
 
+#include "cli_util.hpp"
 #include "test_util.hpp"
 
 namespace {
 
 namespace pt = boost::property_tree;
 
-struct CliResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using top_sim_test::CliResult;
+using top_sim_test::contains;
+using top_sim_test::in_scratch;
+using top_sim_test::slurp;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-// A private scratch directory per test process, removed at exit.
-struct ScratchDir {
-  std::string path;
-  ScratchDir() {
-    char tmpl[] = "/tmp/top_sim_cli_test_XXXXXX";
-    const char* d = mkdtemp(tmpl);
-    if (!d) throw std::runtime_error("mkdtemp failed");
-    path = d;
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
-
-const std::string& scratch() {
-  static const ScratchDir dir;
-  return dir.path;
-}
-
-std::string in_scratch(const std::string& name) { return scratch() + "/" + name; }
-
-CliResult run_cli(const std::string& args) {
-  const std::string out = in_scratch("stdout.txt"), err = in_scratch("stderr.txt");
-  const std::string cmd = std::string("'") + TOP_SIM_TEST_RUN_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+CliResult run_cli(const std::string& args) { return top_sim_test::run_binary(TOP_SIM_TEST_RUN_BINARY, args); }
 
 TEST(Cli, BadSceneExitsTwoAndNamesFileKeyValueRange) {
   const std::string path = top_sim_test::fixture_path("bad_inclination");

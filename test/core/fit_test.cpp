@@ -1,7 +1,6 @@
 // Friction-law fits (docs/analysis.md, "Fitting friction laws"): the stationary errors-in-variables fit and its
 // error coverage, the mirror rule, the trajectory fit from a poor first guess, and top_sim_fit's data errors.
 #include <gtest/gtest.h>
-#include <sys/wait.h>
 
 #include <cmath>
 #include <cstdlib>
@@ -12,6 +11,7 @@
 #include <sstream>
 
 #include "../../src/cli/fit_data.hpp"
+#include "cli_util.hpp"
 #include "test_util.hpp"
 #include "top_sim/fit.hpp"
 
@@ -183,24 +183,9 @@ TEST(FitData, MissingColumnAndNonNumericValueAreNamed) {
   EXPECT_DOUBLE_EQ(d[0].y, 2e-3);
 }
 
-struct Cli {
-  int exit_code = -1;
-  std::string err;
-};
+using Cli = top_sim_test::CliResult;
 
-Cli run_fit_cli(const std::string& args) {
-  const std::string err = std::filesystem::temp_directory_path() / ("top_sim_fit_test_" + std::to_string(getpid()));
-  const std::string cmd = std::string("'") + TOP_SIM_TEST_FIT_BINARY + "' " + args + " >/dev/null 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  Cli r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  std::ifstream in(err);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  r.err = ss.str();
-  std::filesystem::remove(err);
-  return r;
-}
+Cli run_fit_cli(const std::string& args) { return top_sim_test::run_binary(TOP_SIM_TEST_FIT_BINARY, args); }
 
 std::string write_temp(const std::string& name, const std::string& text) {
   const std::string path =

@@ -2,8 +2,6 @@
 // the JSON fields, the sweeps' alpha_c and spin windows, the plot.
 #define BOOST_BIND_GLOBAL_PLACEHOLDERS
 #include <gtest/gtest.h>
-#include <sys/wait.h>
-#include <unistd.h>
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
@@ -14,53 +12,19 @@
 #include <sstream>
 #include <string>
 
+#include "cli_util.hpp"
 #include "test_util.hpp"
 
 namespace {
 
 namespace pt = boost::property_tree;
 
-struct CliResult {
-  int exit_code = -1;
-  std::string out, err;
-};
+using top_sim_test::CliResult;
+using top_sim_test::contains;
+using top_sim_test::scratch;
+using top_sim_test::slurp;
 
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
-}
-
-struct ScratchDir {
-  std::string path;
-  ScratchDir() {
-    char tmpl[] = "/tmp/top_sim_stability_test_XXXXXX";
-    path = mkdtemp(tmpl);
-  }
-  ~ScratchDir() {
-    std::error_code ec;
-    std::filesystem::remove_all(path, ec);
-  }
-};
-
-const std::string& scratch() {
-  static const ScratchDir dir;
-  return dir.path;
-}
-
-CliResult run(const std::string& args) {
-  const std::string out = scratch() + "/stdout.txt", err = scratch() + "/stderr.txt";
-  const std::string cmd = std::string("'") + TOP_SIM_TEST_STABILITY_BINARY + "' " + args + " >'" + out + "' 2>'" + err + "'";
-  const int status = std::system(cmd.c_str());
-  CliResult r;
-  r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+CliResult run(const std::string& args) { return top_sim_test::run_binary(TOP_SIM_TEST_STABILITY_BINARY, args); }
 
 std::string scene(const std::string& name) { return "'" + top_sim_test::scene_path(name) + "'"; }
 

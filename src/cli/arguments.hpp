@@ -1,0 +1,30 @@
+// Command-line arguments of the tools: one error type and one exit path for usage and bad arguments.
+#pragma once
+
+#include <iostream>
+#include <optional>
+#include <string>
+
+namespace top_sim_cli {
+
+// A bad command-line argument; the message names the argument, its value and the allowed range.
+struct BadArgument {
+  std::string message;
+};
+
+// Runs parse(argc, argv, args), which returns false when it was asked for help. The exit status when the tool is
+// done (0 after the usage, 2 after the message and the usage of a bad argument), or nothing to go on.
+template <class Arguments, class Parse>
+std::optional<int> parse_command_line(const char* tool, const char* usage, Parse parse, int argc, char** argv,
+                                      Arguments& args) {
+  try {
+    if (parse(argc, argv, args)) return std::nullopt;
+    std::cout << usage;
+    return 0;
+  } catch (const BadArgument& e) {
+    std::cerr << tool << ": " << e.message << "\n" << usage;
+    return 2;
+  }
+}
+
+}  // namespace top_sim_cli
