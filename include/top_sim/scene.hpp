@@ -60,6 +60,10 @@ Scene load_scene(const std::string& path);
 // `config_dir` is where tops/ and planes/ are looked up ("" = the installed config).
 Scene parse_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir = "");
 
+// Parses a scene given as YAML text (a ROS parameter, a spawn request): the same checks as load_scene, so a key
+// given twice or a bad number is refused as it is in a file. Empty text = every key at its default.
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& config_dir = "");
+
 // The initial state the scene asks for (tilted start or exact sleeping state).
 StateVector initial_state(const Scene& scene);
 

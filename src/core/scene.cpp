@@ -485,6 +485,17 @@ Scene load_scene(const std::string& path) {
   return parse_scene(root, path, config_dir);
 }
 
+Scene parse_scene_text(const std::string& text, const std::string& source, const std::string& config_dir) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw SceneError(source, "", std::string("not valid YAML: ") + e.what());
+  }
+  if (root.IsNull()) root = YAML::Node(YAML::NodeType::Map);  // "" or "~": the defaults
+  return parse_scene(root, source, config_dir);
+}
+
 StateVector initial_state(const Scene& scene) {
   const Model& model = scene.model;
   const InitialConditions& ic = scene.initial;

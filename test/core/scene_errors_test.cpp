@@ -233,3 +233,31 @@ TEST(SceneErrors, ADirectoryIsNotASceneFile) {
 }
 
 }  // namespace
+
+namespace {
+
+// parse_scene_text (the node's ~scene parameter and spawn requests) applies the file loader's checks.
+TEST(SceneText, SameChecksAsAFile) {
+  const std::string dup = "top: aluminium\ntop: steel\n";
+  try {
+    top_sim::parse_scene_text(dup, "spawn a");
+    ADD_FAILURE() << "a key given twice was accepted";
+  } catch (const top_sim::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("given twice"), std::string::npos) << e.what();
+    EXPECT_EQ(e.file, "spawn a");
+  }
+  EXPECT_THROW(top_sim::parse_scene_text("top: [unclosed", "spawn b"), top_sim::SceneError);
+  EXPECT_THROW(top_sim::parse_scene_text("spin: 300\n", "spawn c"), top_sim::SceneError);  // unknown key
+  try {  // no text: the keys' defaults, and `top` has none
+    top_sim::parse_scene_text("", "spawn d");
+    ADD_FAILURE() << "an empty scene was accepted";
+  } catch (const top_sim::SceneError& e) {
+    EXPECT_NE(std::string(e.what()).find("top: required"), std::string::npos) << e.what();
+  }
+  const top_sim::Scene spun = top_sim::parse_scene_text("top: aluminium\nfriction: pmma\ninitial: {spin: 123.5}\n",
+                                                        "spawn e", top_sim_test::config_dir());
+  EXPECT_EQ(spun.initial.spin, 123.5);
+  EXPECT_EQ(spun.source, "spawn e");
+}
+
+}  // namespace
