@@ -3,7 +3,8 @@ find_package(catkin REQUIRED COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
   tf2 tf2_ros diagnostic_updater dynamic_reconfigure message_generation)
 
-add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg)
+add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg TopStateArray.msg)
+add_service_files(DIRECTORY srv FILES Spawn.srv Kill.srv ListTops.srv)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs)
 generate_dynamic_reconfigure_options(cfg/TopSim.cfg)
 
@@ -13,21 +14,24 @@ catkin_package(
   CATKIN_DEPENDS message_runtime roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs
                  rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure)
 
-# Message conversions and the parameter-tree reader, shared by the node and its unit tests.
-add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp)
+# The node's parts (docs/architecture.md, "The ROS node"), shared by the node and its unit tests.
+add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/node_parameters.cpp
+  src/ros/top_input.cpp src/ros/node_top.cpp src/ros/top_set.cpp src/ros/state_output.cpp
+  src/ros/node_diagnostics.cpp src/ros/node_reconfigure.cpp)
 target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
-add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
+add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 
-add_executable(top_sim_node src/ros/top_sim_node.cpp)
-target_link_libraries(top_sim_node top_sim_ros ${catkin_LIBRARIES})
-add_dependencies(top_sim_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 if(TARGET top_sim_lcm)
-  target_link_libraries(top_sim_node top_sim_lcm)
+  target_link_libraries(top_sim_ros PUBLIC top_sim_lcm)
   install(TARGETS top_sim_lcm
     ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
     LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
 endif()
+
+add_executable(top_sim_node src/ros/top_sim_node.cpp)
+target_link_libraries(top_sim_node top_sim_ros ${catkin_LIBRARIES})
+add_dependencies(top_sim_node ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
 
 install(TARGETS top_sim_ros top_sim_node
   ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
@@ -40,7 +44,7 @@ install(DIRECTORY rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION} OPTIONAL)
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(tf2_msgs REQUIRED)
-  catkin_add_gtest(top_sim_ros_unit_tests test/ros/test_conversions.cpp)
+  catkin_add_gtest(top_sim_ros_unit_tests test/ros/test_conversions.cpp test/ros/test_node_parts.cpp)
   if(TARGET top_sim_ros_unit_tests)
     target_link_libraries(top_sim_ros_unit_tests top_sim_ros)
     target_compile_definitions(top_sim_ros_unit_tests PRIVATE

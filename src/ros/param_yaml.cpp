@@ -27,14 +27,6 @@ YAML::Node to_yaml(XmlRpc::XmlRpcValue& v, const std::string& where) {
   }
 }
 
-YAML::Node scene_yaml(XmlRpc::XmlRpcValue& tree, const std::set<std::string>& drop, const std::string& where) {
-  YAML::Node map(YAML::NodeType::Map);
-  if (tree.getType() != XmlRpc::XmlRpcValue::TypeStruct) return map;  // no parameters: the core's defaults
-  for (auto& kv : tree)
-    if (!drop.count(kv.first)) map[kv.first] = to_yaml(kv.second, where + "/" + kv.first);
-  return map;
-}
-
 const std::set<std::string>& reconfigure_physics_keys() {
   static const std::set<std::string> keys = [] {
     std::set<std::string> k = {"alpha", "spin", "friction_law"};

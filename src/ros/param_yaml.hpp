@@ -14,9 +14,6 @@ namespace top_sim_ros {
 // Converts a value; throws std::runtime_error naming `where` for types YAML cannot hold (dates, binary).
 YAML::Node to_yaml(XmlRpc::XmlRpcValue& value, const std::string& where);
 
-// The struct `tree` as a YAML map without the keys in `drop` (the node's own parameters).
-YAML::Node scene_yaml(XmlRpc::XmlRpcValue& tree, const std::set<std::string>& drop, const std::string& where);
-
 // The keys of cfg/TopSim.cfg that change the physics (alpha, spin, friction_law and the friction parameters).
 const std::set<std::string>& reconfigure_physics_keys();
 

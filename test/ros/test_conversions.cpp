@@ -1,4 +1,4 @@
-// Unit tests of the ROS adapter's pure maps (no master needed): parameters -> YAML, TopCommand -> Command,
+// Unit tests of the ROS adapter's pure maps (no master needed): TopCommand -> Command,
 // Snapshot -> tf / TopState.
 #include <gtest/gtest.h>
 
@@ -6,41 +6,9 @@
 #include <limits>
 
 #include "conversions.hpp"
-#include "param_yaml.hpp"
 #include "top_sim/scene.hpp"
 
 using top_sim_ros::to_command;
-
-TEST(ParamYaml, StructBecomesSceneTheCoreAccepts) {
-  XmlRpc::XmlRpcValue tree;
-  tree["top"] = std::string("aluminium");
-  tree["friction"] = std::string("pmma");
-  tree["plane"]["inclination"] = 0.17;
-  tree["initial"]["spin"] = 150;  // an int on the server must still read as a double
-  tree["initial"]["position"][0] = 0.5;
-  tree["initial"]["position"][1] = -0.25;
-  tree["publish_rate"] = 1000.0;  // the node's own key: dropped
-  const YAML::Node y = top_sim_ros::scene_yaml(tree, {"publish_rate"}, "/top_sim");
-  EXPECT_FALSE(y["publish_rate"]);
-  const top_sim::Scene s = top_sim::parse_scene(y, "/top_sim", TOP_SIM_TEST_CONFIG_DIR);
-  EXPECT_EQ(s.model.plane.inclination, 0.17);
-  EXPECT_EQ(s.initial.spin, 150.0);
-  EXPECT_EQ(s.initial.position.x(), 0.5);
-  EXPECT_EQ(s.initial.position.y(), -0.25);
-}
-
-TEST(ParamYaml, UnknownKeyIsStillAnError) {
-  XmlRpc::XmlRpcValue tree;
-  tree["top"] = std::string("aluminium");
-  tree["plane"]["inclinaton"] = 0.1;  // typo must not be ignored
-  const YAML::Node y = top_sim_ros::scene_yaml(tree, {}, "/top_sim");
-  try {
-    top_sim::parse_scene(y, "/top_sim", TOP_SIM_TEST_CONFIG_DIR);
-    FAIL() << "typo accepted";
-  } catch (const top_sim::SceneError& e) {
-    EXPECT_NE(std::string(e.what()).find("inclinaton"), std::string::npos) << e.what();
-  }
-}
 
 TEST(TopCommand, OnlySetFieldsAreCarried) {
   top_sim::TopCommand m;

@@ -1,0 +1,149 @@
+#include "node_parameters.hpp"
+
+#include <cmath>
+#include <sstream>
+
+#include "param_yaml.hpp"
+
+namespace top_sim_ros {
+
+namespace {
+
+std::string type_error(const std::string& where, XmlRpc::XmlRpcValue& v, const std::string& wanted) {
+  return where + " = " + v.toXml() + ": must be " + wanted;
+}
+
+void require(bool ok, const std::string& where, double value, const std::string& range) {
+  if (!ok) throw ParameterError(range_error(where, value, range));
+}
+
+}  // namespace
+
+std::string range_error(const std::string& name, double value, const std::string& range) {
+  std::ostringstream os;
+  os.precision(17);
+  os << name << " = " << value << ": must be " << range;
+  return os.str();
+}
+
+ParamReader::ParamReader(XmlRpc::XmlRpcValue tree, std::string ns) : tree_(std::move(tree)), ns_(std::move(ns)) {
+  if (tree_.getType() != XmlRpc::XmlRpcValue::TypeStruct) tree_ = XmlRpc::XmlRpcValue();  // nothing under ~
+}
+
+bool ParamReader::has(const std::string& key) {
+  known_.insert(key);
+  return tree_.getType() == XmlRpc::XmlRpcValue::TypeStruct && tree_.hasMember(key);
+}
+
+XmlRpc::XmlRpcValue& ParamReader::raw(const std::string& key) { return tree_[key]; }
+
+double ParamReader::number(const std::string& key, double fallback) {
+  if (!has(key)) return fallback;
+  XmlRpc::XmlRpcValue& v = tree_[key];
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  throw ParameterError(type_error(where(key), v, "a number"));
+}
+
+int ParamReader::integer(const std::string& key, int fallback) {
+  if (!has(key)) return fallback;
+  XmlRpc::XmlRpcValue& v = tree_[key];
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
+  throw ParameterError(type_error(where(key), v, "an integer"));
+}
+
+bool ParamReader::flag(const std::string& key, bool fallback) {
+  if (!has(key)) return fallback;
+  XmlRpc::XmlRpcValue& v = tree_[key];
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeBoolean) return static_cast<bool>(v);
+  throw ParameterError(type_error(where(key), v, "true or false"));
+}
+
+std::string ParamReader::text(const std::string& key, const std::string& fallback) {
+  if (!has(key)) return fallback;
+  XmlRpc::XmlRpcValue& v = tree_[key];
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString) return static_cast<std::string>(v);
+  throw ParameterError(type_error(where(key), v, "a string"));
+}
+
+void ParamReader::check_unknown() const {
+  if (tree_.getType() != XmlRpc::XmlRpcValue::TypeStruct) return;
+  XmlRpc::XmlRpcValue copy = tree_;  // XmlRpcValue iterates only when non-const
+  for (auto& kv : copy) {
+    if (known_.count(kv.first)) continue;
+    throw ParameterError(ns_ + "/" + kv.first +
+                         ": unknown parameter (the scene's keys go under " + ns_ + "/scene or in " + ns_ +
+                         "/scene_file; the node's parameters are listed in docs/ros.md)");
+  }
+}
+
+NodeParameters read_node_parameters(ParamReader& p) {
+  NodeParameters n;
+  n.publish_rate = p.number("publish_rate", n.publish_rate);
+  require(std::isfinite(n.publish_rate) && n.publish_rate > 0.0 && n.publish_rate <= kMaxPublishRate,
+          p.where("publish_rate"), n.publish_rate, "in (0, 10000] Hz");
+  n.real_time_factor = p.number("real_time_factor", n.real_time_factor);
+  require(std::isfinite(n.real_time_factor) && n.real_time_factor >= 0.0, p.where("real_time_factor"),
+          n.real_time_factor, ">= 0 and finite (0 = as fast as possible)");
+  n.publish_clock = p.flag("publish_clock", n.publish_clock);
+  n.publish_tf = p.flag("publish_tf", n.publish_tf);
+  n.frames.world = p.text("world_frame", n.frames.world);
+  n.frames.plane = p.text("plane_frame", n.frames.plane);
+  n.frames.top = p.text("top_frame", n.frames.top);
+  n.path_length = p.integer("path_length", n.path_length);
+  require(n.path_length >= 1, p.where("path_length"), n.path_length, ">= 1 (poses kept)");
+  n.path_resolution = p.number("path_resolution", n.path_resolution);
+  require(std::isfinite(n.path_resolution) && n.path_resolution >= 0.0, p.where("path_resolution"),
+          n.path_resolution, ">= 0 m");
+  n.marker_rate = p.number("marker_rate", n.marker_rate);
+  require(std::isfinite(n.marker_rate) && n.marker_rate > 0.0, p.where("marker_rate"), n.marker_rate, "> 0 Hz");
+  n.path_rate = p.number("path_rate", n.path_rate);
+  require(std::isfinite(n.path_rate) && n.path_rate > 0.0, p.where("path_rate"), n.path_rate, "> 0 Hz");
+  n.lcm_url = p.text("lcm_url", n.lcm_url);
+  n.lcm_channel = p.text("lcm_channel", n.lcm_channel);
+  n.config_dir = p.text("config_dir", n.config_dir);
+  return n;
+}
+
+top_sim::Scene scene_value(XmlRpc::XmlRpcValue& value, const std::string& source, const std::string& config_dir,
+                           const top_sim::Scene& fallback) {
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeString) {
+    const std::string text = static_cast<std::string>(value);
+    if (text.find_first_not_of(" \t\r\n") == std::string::npos) return fallback;
+    return top_sim::parse_scene_text(text, source, config_dir);
+  }
+  if (value.getType() == XmlRpc::XmlRpcValue::TypeStruct)
+    return top_sim::parse_scene(to_yaml(value, source), source, config_dir);
+  throw ParameterError(type_error(source, value, "scene YAML text or a map of scene keys"));
+}
+
+top_sim::Scene read_node_scene(ParamReader& p, const std::string& config_dir) {
+  const std::string file = p.text("scene_file", "");
+  const bool inline_scene = p.has("scene");
+  if (!file.empty() && inline_scene)
+    throw ParameterError("the scene comes from one place: " + p.where("scene_file") + " = '" + file + "' and " +
+                         p.where("scene") + " are both set; keep one");
+  if (!file.empty()) return top_sim::load_scene(file);
+  if (!inline_scene)
+    throw ParameterError("no scene: set " + p.where("scene_file") + " (a scene file) or " + p.where("scene") +
+                         " (scene YAML text or keys)");
+  const top_sim::Scene none;
+  XmlRpc::XmlRpcValue& v = p.raw("scene");
+  if (v.getType() == XmlRpc::XmlRpcValue::TypeString && static_cast<std::string>(v).empty())
+    throw ParameterError(p.where("scene") + " is empty: give scene YAML text or keys");
+  return scene_value(v, p.where("scene"), config_dir, none);
+}
+
+std::vector<std::pair<std::string, top_sim::Scene>> read_start_tops(ParamReader& p, const std::string& config_dir,
+                                                                     const top_sim::Scene& node_scene) {
+  std::vector<std::pair<std::string, top_sim::Scene>> tops;
+  if (!p.has("tops")) return tops;
+  XmlRpc::XmlRpcValue& v = p.raw("tops");
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeStruct)
+    throw ParameterError(type_error(p.where("tops"), v, "a map NAME: scene (YAML text, \"\" = the node's scene)"));
+  for (auto& kv : v)  // XmlRpc's struct is a std::map: name order
+    tops.emplace_back(kv.first, scene_value(kv.second, p.where("tops/" + kv.first), config_dir, node_scene));
+  return tops;
+}
+
+}  // namespace top_sim_ros

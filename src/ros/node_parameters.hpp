@@ -1,0 +1,84 @@
+// The node's parameters under ~ and the scenes it starts with (docs/ros.md, "Parameters"). Everything is read from
+// one snapshot of the private namespace with strict types, so a wrong type or an unknown key is an error naming the
+// parameter, never a silent default.
+#pragma once
+
+#include <set>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+#include <xmlrpcpp/XmlRpcValue.h>
+
+#include "conversions.hpp"
+#include "top_sim/scene.hpp"
+
+namespace top_sim_ros {
+
+// A bad parameter: the message names it (with its namespace), its value and the allowed range.
+class ParameterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// Reads typed values from the private namespace's tree and remembers every key it was asked for, so the keys the
+// node knows are exactly the keys it reads (no hand-written list to fall out of date).
+class ParamReader {
+ public:
+  ParamReader(XmlRpc::XmlRpcValue tree, std::string ns);
+  double number(const std::string& key, double fallback);  // an int or a double
+  int integer(const std::string& key, int fallback);
+  bool flag(const std::string& key, bool fallback);
+  std::string text(const std::string& key, const std::string& fallback);
+  bool has(const std::string& key);
+  XmlRpc::XmlRpcValue& raw(const std::string& key);  // has(key) must hold
+  void know(const std::string& key) { known_.insert(key); }
+  // Throws ParameterError for a key under ~ that nobody read.
+  void check_unknown() const;
+  XmlRpc::XmlRpcValue& tree() { return tree_; }
+  std::string where(const std::string& key) const { return ns_ + "/" + key; }
+
+ private:
+  XmlRpc::XmlRpcValue tree_;
+  std::string ns_;
+  std::set<std::string> known_;
+};
+
+struct NodeParameters {
+  double publish_rate = 200.0;      // [Hz], in (0, kMaxPublishRate]
+  double real_time_factor = 1.0;    // >= 0, 0 = as fast as possible
+  bool publish_clock = false;       // /clock from the launch-time top's stamps
+  bool publish_tf = true;           // tf for every top (off for thousands of tops watched through top_states)
+  Frames frames;                    // the launch-time top's; a spawned top NAME uses NAME/<plane>, NAME/<top>
+  int path_length = 2000;           // poses kept per top
+  double path_resolution = 2.0e-4;  // [m] between poses
+  double marker_rate = 30.0;        // [Hz]
+  double path_rate = 10.0;          // [Hz]
+  std::string lcm_url, lcm_channel = "TOP_STATE";
+  std::string config_dir;           // where scenes find tops/ and planes/
+};
+
+constexpr double kMaxPublishRate = 10000.0;
+
+// "NAME = VALUE: must be RANGE".
+std::string range_error(const std::string& name, double value, const std::string& range);
+
+// The node's own parameters; throws ParameterError.
+NodeParameters read_node_parameters(ParamReader& params);
+
+// The launch-time scene: ~scene_file (read by load_scene, as top_sim_run reads it) or ~scene (YAML text, read
+// with the same checks; or a map of parameters, which rosparam has already de-duplicated). Exactly one of them.
+// Throws top_sim::SceneError (bad scene) or ParameterError (bad source).
+top_sim::Scene read_node_scene(ParamReader& params, const std::string& config_dir);
+
+// A scene given as a parameter value: YAML text (parse_scene_text: the file loader's checks; "" = `fallback`) or a
+// map of parameters (parse_scene). `source` names it in messages.
+top_sim::Scene scene_value(XmlRpc::XmlRpcValue& value, const std::string& source, const std::string& config_dir,
+                           const top_sim::Scene& fallback);
+
+// ~tops: extra tops at start, a map NAME -> scene (as scene_value reads it, "" = the node's scene), in name order;
+// the caller spawns them exactly as the spawn service would.
+std::vector<std::pair<std::string, top_sim::Scene>> read_start_tops(ParamReader& params, const std::string& config_dir,
+                                                                     const top_sim::Scene& node_scene);
+
+}  // namespace top_sim_ros

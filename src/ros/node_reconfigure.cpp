@@ -1,0 +1,130 @@
+#include "node_reconfigure.hpp"
+
+#include <cmath>
+
+#include "node_parameters.hpp"
+
+namespace top_sim_ros {
+
+namespace {
+
+// dynamic_reconfigure's friction fields are named like the core's parameters.
+void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& cfg) {
+  cfg.friction_law = top_sim::to_string(law.kind);
+#define TOP_SIM_COPY_TO_CONFIG(kind, name, range) cfg.name = law.name;
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_TO_CONFIG)
+#undef TOP_SIM_COPY_TO_CONFIG
+}
+
+void friction_from_config(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+#define TOP_SIM_COPY_FROM_CONFIG(kind, name, range) law.name = cfg.name;
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_CONFIG)
+#undef TOP_SIM_COPY_FROM_CONFIG
+}
+
+}  // namespace
+
+NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene,
+                                 const top_sim::Command& start, double real_time_factor, double publish_rate,
+                                 ReconfigureHooks hooks)
+    : hooks_(std::move(hooks)) {
+  server_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(mutex_, pnh);
+  config_.alpha = start.inclination ? *start.inclination : scene.model.plane.inclination;
+  config_.spin = start.spin ? *start.spin : scene.initial.spin;
+  config_.real_time_factor = real_time_factor;
+  config_.publish_rate = publish_rate;
+  friction_to_config(start.friction ? *start.friction : scene.model.friction, config_);
+  server_->updateConfig(config_);
+  server_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
+  // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.
+  timer_ = nh.createWallTimer(ros::WallDuration(0.5), [this](const ros::WallTimerEvent&) {
+    if (!dirty_) return;
+    dirty_ = false;
+    server_->updateConfig(config_);
+  });
+}
+
+void NodeReconfigure::show(const top_sim::Command& c) {
+  if (c.inclination) config_.alpha = *c.inclination;
+  if (c.spin) config_.spin = *c.spin;
+  if (c.friction) friction_to_config(*c.friction, config_);
+  if (c.inclination || c.spin || c.friction) dirty_ = true;  // pushed by the slow timer
+}
+
+void NodeReconfigure::show_scene(const top_sim::Scene& scene) {
+  config_.alpha = scene.model.plane.inclination;
+  config_.spin = scene.initial.spin;
+  friction_to_config(scene.model.friction, config_);
+  dirty_ = true;
+}
+
+void NodeReconfigure::on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level) {
+  if (!ready_) {  // the first call only echoes the values set at start
+    ready_ = true;
+    cfg = config_;
+    return;
+  }
+  top_sim::Command c;
+  if ((level & 1) && cfg.alpha != config_.alpha) c.inclination = cfg.alpha;
+  if ((level & 2) && cfg.spin != config_.spin) c.spin = cfg.spin;
+  if (level & 16) {
+    top_sim::FrictionLaw law = hooks_.friction();
+    if (!reconfigured_friction(cfg, law)) {
+      cfg = config_;
+      return;
+    }
+    c.friction = law;
+  }
+  if (!c.empty() && !hooks_.submit(c).empty()) {
+    const double rtf = cfg.real_time_factor, rate = cfg.publish_rate;
+    cfg = config_;  // show the values in force
+    cfg.real_time_factor = rtf;
+    cfg.publish_rate = rate;
+  }
+  reconfigure_pacing(cfg, level);
+  cfg.alpha = config_.alpha;  // applied or refused above; either way config_ holds the value in force
+  cfg.spin = config_.spin;
+}
+
+// The law dynamic_reconfigure asks for, over the law in force; false (after a warning) when it names no law or
+// switches to a table, whose points it cannot carry.
+bool NodeReconfigure::reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+  top_sim::FrictionLawKind kind;
+  if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
+    ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be one of %s", cfg.friction_law.c_str(),
+             top_sim::friction_law_names(", ").c_str());
+    return false;
+  }
+  if (kind == top_sim::kFrictionPointsLaw && law.kind != kind) {
+    ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene or a "
+             "TopCommand; kept the %s law", top_sim::to_string(law.kind));
+    return false;
+  }
+  law.kind = kind;
+  friction_from_config(cfg, law);
+  return true;
+}
+
+// real_time_factor (level 4) and publish_rate (level 8): applied when valid, else warned; cfg shows what holds.
+void NodeReconfigure::reconfigure_pacing(top_sim::TopSimConfig& cfg, uint32_t level) {
+  if (level & 4) {
+    if (std::isfinite(cfg.real_time_factor) && cfg.real_time_factor >= 0.0) {
+      config_.real_time_factor = cfg.real_time_factor;
+      hooks_.set_real_time_factor(cfg.real_time_factor);
+    } else {
+      ROS_WARN("top_sim_node: %s", range_error("real_time_factor", cfg.real_time_factor, ">= 0").c_str());
+    }
+    cfg.real_time_factor = config_.real_time_factor;
+  }
+  if (level & 8) {
+    if (std::isfinite(cfg.publish_rate) && cfg.publish_rate > 0.0 && cfg.publish_rate <= kMaxPublishRate) {
+      config_.publish_rate = cfg.publish_rate;
+      hooks_.set_publish_rate(cfg.publish_rate);
+    } else {
+      ROS_WARN("top_sim_node: %s", range_error("publish_rate", cfg.publish_rate, "in (0, 10000] Hz").c_str());
+    }
+    cfg.publish_rate = config_.publish_rate;
+  }
+}
+
+}  // namespace top_sim_ros

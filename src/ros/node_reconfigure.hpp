@@ -1,0 +1,48 @@
+// dynamic_reconfigure (cfg/TopSim.cfg) for the launch-time top's physics and the node's pacing (docs/ros.md).
+// The .cfg declares no ranges: a bad value is refused with a warning and the values in force are shown again
+// (no silent clamps). Physics changes go through the same validated command path as the topics.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include <dynamic_reconfigure/server.h>
+#include <ros/ros.h>
+
+#include "top_sim/TopSimConfig.h"
+#include "top_sim/command.hpp"
+#include "top_sim/scene.hpp"
+
+namespace top_sim_ros {
+
+struct ReconfigureHooks {
+  std::function<std::string(const top_sim::Command&)> submit;  // to the launch-time top: "" or why refused
+  std::function<top_sim::FrictionLaw()> friction;               // the launch-time top's law in force
+  std::function<void(double)> set_real_time_factor;             // called with valid values only
+  std::function<void(double)> set_publish_rate;
+};
+
+class NodeReconfigure {
+ public:
+  // Shows the values in force at start: the scene's, or `start` (dynamic_reconfigure's values found under ~).
+  NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, const top_sim::Command& start,
+                  double real_time_factor, double publish_rate, ReconfigureHooks hooks);
+
+  void show(const top_sim::Command& applied);  // an accepted command, from any source, is shown
+  void show_scene(const top_sim::Scene& scene);  // after a reset
+
+ private:
+  void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level);
+  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law);
+  void reconfigure_pacing(top_sim::TopSimConfig& cfg, uint32_t level);
+
+  ReconfigureHooks hooks_;
+  boost::recursive_mutex mutex_;
+  std::unique_ptr<dynamic_reconfigure::Server<top_sim::TopSimConfig>> server_;
+  top_sim::TopSimConfig config_;
+  bool ready_ = false, dirty_ = false;
+  ros::WallTimer timer_;
+};
+
+}  // namespace top_sim_ros

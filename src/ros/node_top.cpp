@@ -1,0 +1,79 @@
+#include "node_top.hpp"
+
+#include <utility>
+
+namespace top_sim_ros {
+
+Frames spawned_frames(const Frames& node_frames, const std::string& name) {
+  Frames f;
+  f.world = node_frames.world;
+  f.plane = name + "/" + node_frames.plane;
+  f.top = name + "/" + node_frames.top;
+  return f;
+}
+
+NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const Frames& frames, double node_time,
+                 double real_time_factor, double rate, double wall)
+    : name_(std::move(name)),
+      prefix_(launch_top ? "" : name_ + "/"),
+      scene_(std::move(scene)),
+      sim_(std::make_unique<top_sim::Simulator>(scene_)),
+      pacer_(real_time_factor, rate, wall, sim_->time()),
+      frames_(frames),
+      node_time_(node_time) {}
+
+void NodeTop::advance(double wall, double budget, bool paused) {
+  const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;
+  if (!running) {
+    sim_->advance_to(sim_->time());  // applies pending commands without moving time
+  } else {
+    const top_sim::Pacer::Tick t = pacer_.plan(wall, sim_->time());
+    sim_->advance_to(t.target, budget);  // returns within about the budget, at t.target or short of it
+  }
+  mode_switches_ += sim_->take_mode_switches().size();  // drained: the core would hold up to 100000 until reset
+  pacer_.record(wall, sim_->time(), running);
+}
+
+void NodeTop::reset(double wall) {
+  sim_->reset();
+  output.trail.poses.clear();
+  fault_reported_ = false;
+  pacer_.reanchor(wall, sim_->time(), false);  // time keeps running: keep the window
+}
+
+void NodeTop::reanchor(double wall, bool clear_window) { pacer_.reanchor(wall, sim_->time(), clear_window); }
+
+std::size_t NodeTop::take_steps() {
+  const std::size_t now = sim_->stats().steps;
+  const std::size_t d = now - steps_reported_;
+  steps_reported_ = now;
+  return d;
+}
+
+void NodeTop::report(double real_time_factor, double publish_rate, bool paused) {
+  if (sim_->fault() != top_sim::ContactFault::none && !fault_reported_) {
+    fault_reported_ = true;
+    if (launch_top())
+      ROS_ERROR("top_sim_node: contact fault, simulation stopped (call ~reset): %s", sim_->fault_message().c_str());
+    else
+      ROS_ERROR_THROTTLE(1.0, "top_sim_node: top %s: contact fault, stopped (call ~reset or ~kill): %s",
+                         name_.c_str(), sim_->fault_message().c_str());
+  }
+  if (pacer_.behind() == behind_reported_) return;
+  behind_reported_ = pacer_.behind();
+  const double achieved = pacer_.achieved_factor();
+  if (!launch_top()) {  // one line per second for all spawned tops; the diagnostics count them
+    ROS_INFO_THROTTLE(1.0, "top_sim_node: top %s %s: achieved real-time factor %.3g of %.3g", name_.c_str(),
+                      behind_reported_ ? "falling behind" : "caught up", achieved, real_time_factor);
+  } else if (behind_reported_) {
+    ROS_WARN("top_sim_node: falling behind: achieved %.3g of requested %.3g (the physics gets %.3g ms of each "
+             "%.3g ms period; debt beyond %.2g s is dropped)", achieved, real_time_factor, 1e3 * pacer_.budget(),
+             1e3 / publish_rate, pacer_.options().max_debt);
+  } else if (paused || sim_->fault() != top_sim::ContactFault::none) {
+    ROS_INFO("top_sim_node: %s: no longer falling behind", paused ? "paused" : "stopped by a contact fault");
+  } else {
+    ROS_INFO("top_sim_node: caught up: achieved real-time factor %.4g of requested %.4g", achieved, real_time_factor);
+  }
+}
+
+}  // namespace top_sim_ros

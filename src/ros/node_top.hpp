@@ -1,0 +1,74 @@
+// One top of the node: its scene, simulator and pacing, its command input and its output state (docs/ros.md,
+// "Many tops"). Each top integrates on its own (own stepper, events, contact modes, Pacer), so a costly top falls
+// behind alone instead of slowing the others.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+
+#include <nav_msgs/Path.h>
+#include <ros/ros.h>
+
+#include "conversions.hpp"
+#include "top_input.hpp"
+#include "top_sim/pacing.hpp"
+#include "top_sim/scene.hpp"
+#include "top_sim/simulator.hpp"
+
+namespace top_sim_ros {
+
+// What the publishing side keeps per top.
+struct TopOutput {
+  ros::Publisher state, path;
+  nav_msgs::Path trail;     // contact-point trail
+  ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
+};
+
+class NodeTop {
+ public:
+  // `node_time`: the node's simulated time at creation (0 for the launch-time top); stamps are
+  // stamp origin + node_time + the top's own simulated time, so a spawned top starts at the node's current stamp.
+  // The launch-time top keeps the node's names (~top_state, frames plane and top); a spawned one lives under NAME/.
+  NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const Frames& frames, double node_time,
+          double real_time_factor, double rate, double wall);
+
+  // One tick: the Pacer's target for `wall`, reached within about `budget` wall seconds (or short of it).
+  void advance(double wall, double budget, bool paused);
+  void reset(double wall);                          // to the scene's initial state; time keeps running forward
+  void reanchor(double wall, bool clear_window);    // after pause, resume, a new factor
+  // Logs a new fault or a change of the behind state once (spawned tops' lines are throttled node-wide).
+  void report(double real_time_factor, double publish_rate, bool paused);
+
+  const std::string& name() const { return name_; }
+  const top_sim::Scene& scene() const { return scene_; }
+  top_sim::Simulator& sim() { return *sim_; }
+  const top_sim::Simulator& sim() const { return *sim_; }
+  top_sim::Pacer& pacer() { return pacer_; }
+  const top_sim::Pacer& pacer() const { return pacer_; }
+  const Frames& frames() const { return frames_; }
+  double stamp_offset() const { return node_time_; }
+  bool launch_top() const { return prefix_.empty(); }
+  const std::string& prefix() const { return prefix_; }  // "" or "NAME/": topic names relative to ~
+
+  std::size_t take_steps();  // integrator steps since the last call
+  std::size_t mode_switches() const { return mode_switches_; }
+
+  std::unique_ptr<TopInput> input;
+  TopOutput output;
+
+ private:
+  std::string name_, prefix_;
+  top_sim::Scene scene_;
+  std::unique_ptr<top_sim::Simulator> sim_;
+  top_sim::Pacer pacer_;
+  Frames frames_;
+  double node_time_;
+  std::size_t steps_reported_ = 0, mode_switches_ = 0;
+  bool fault_reported_ = false, behind_reported_ = false;
+};
+
+// The frames of a spawned top NAME: NAME/<plane>, NAME/<top> under the node's world frame.
+Frames spawned_frames(const Frames& node_frames, const std::string& name);
+
+}  // namespace top_sim_ros

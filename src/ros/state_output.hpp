@@ -1,0 +1,64 @@
+// Publishing (docs/ros.md, "Topics"): per top its TopState, tf and contact-point path; for all tops the
+// top_states array and the markers; /clock and LCM from the launch-time top. Nothing non-finite is published.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <geometry_msgs/TransformStamped.h>
+
+#include <ros/ros.h>
+
+#include "node_parameters.hpp"
+#include "top_set.hpp"
+#include "top_sim/snapshot.hpp"
+#include <tf2_ros/transform_broadcaster.h>
+#ifdef TOP_SIM_HAVE_LCM
+#include "lcm_publisher.hpp"
+#endif
+
+namespace top_sim_ros {
+
+class StateOutput {
+ public:
+  // Advertises the node-wide topics under `pnh` (markers, top_states; /clock when asked) and opens LCM.
+  StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParameters& params, double stamp_origin);
+
+  void open(NodeTop& top, ros::NodeHandle& pnh);  // advertises the top's top_state and path
+  void close(NodeTop& top);                       // deletes its markers in rviz
+  void clear_trail(NodeTop& top) { top.output.trail.poses.clear(); }
+
+  // One period's output for every top.
+  void publish(TopSet& tops, double wall, bool paused, double requested_factor);
+
+  ros::Time stamp(const NodeTop& top) const;  // origin + the top's spawn offset + its simulated time
+  const std::string& lcm_status() const { return lcm_status_; }
+  std::size_t published() const { return published_; }
+
+ private:
+  void add_transforms(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
+                      std::vector<geometry_msgs::TransformStamped>& tf);
+  void publish_clock(const NodeTop& launch_top);
+  void publish_markers(TopSet& tops, double wall);
+  void publish_paths(TopSet& tops, double wall);
+  void update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp);
+  void publish_lcm(const top_sim::Snapshot& s, double achieved_factor);
+  void open_lcm();
+
+  NodeParameters params_;
+  double stamp_origin_;
+  ros::Publisher markers_, states_, clock_;
+  tf2_ros::TransformBroadcaster tf_;
+  ros::Time last_clock_;
+  double last_marker_wall_ = 0.0, last_path_wall_ = 0.0;
+  std::size_t published_ = 0;
+  std::string lcm_status_ = "off";
+#ifdef TOP_SIM_HAVE_LCM
+  std::unique_ptr<top_sim_lcm::Publisher> lcm_;
+  bool lcm_send_failed_ = false;
+#endif
+};
+
+}  // namespace top_sim_ros

@@ -1,0 +1,77 @@
+#include "top_set.hpp"
+
+#include <algorithm>
+#include <chrono>
+
+namespace top_sim_ros {
+
+namespace {
+
+constexpr std::size_t kMaxNameLength = 100;
+
+bool is_base_name(const std::string& name) {
+  auto letter = [](char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z'); };
+  auto digit = [](char c) { return c >= '0' && c <= '9'; };
+  if (name.empty() || !letter(name[0])) return false;
+  return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || digit(c) || c == '_'; });
+}
+
+double seconds_now() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+
+}  // namespace
+
+std::string TopSet::check_new_name(const std::string& name) const {
+  if (name.empty()) return "name is empty: give a base ROS name (a letter, then letters, digits or '_')";
+  if (name.size() > kMaxNameLength)
+    return "name '" + name.substr(0, 20) + "...' is " + std::to_string(name.size()) + " characters long: at most " +
+           std::to_string(kMaxNameLength);
+  if (!is_base_name(name))
+    return "name '" + name + "' is not a base ROS name: a letter, then letters, digits or '_' (no '/', no spaces)";
+  for (const auto& t : tops_)
+    if (t->name() == name) return "name '" + name + "' is taken: a top of that name exists (~list)";
+  return "";
+}
+
+NodeTop& TopSet::add(std::unique_ptr<NodeTop> top) {
+  tops_.push_back(std::move(top));
+  return *tops_.back();
+}
+
+std::unique_ptr<NodeTop> TopSet::remove(const std::string& name) {
+  for (auto it = tops_.begin(); it != tops_.end(); ++it) {
+    if ((*it)->name() != name) continue;
+    std::unique_ptr<NodeTop> top = std::move(*it);
+    tops_.erase(it);
+    return top;
+  }
+  return nullptr;
+}
+
+NodeTop* TopSet::find(const std::string& name) {
+  for (auto& t : tops_)
+    if (t->name() == name) return t.get();
+  return nullptr;
+}
+
+std::vector<std::string> TopSet::names() const {
+  std::vector<std::string> n;
+  n.reserve(tops_.size());
+  for (const auto& t : tops_) n.push_back(t->name());
+  return n;
+}
+
+void TopSet::advance(double wall, double budget, bool paused) {
+  const std::size_t n = tops_.size();
+  if (n == 0) return;
+  first_ %= n;
+  const double start = seconds_now();
+  for (std::size_t k = 0; k < n; ++k) {
+    const double left = std::max(0.0, budget - (seconds_now() - start));
+    tops_[(first_ + k) % n]->advance(wall, left / static_cast<double>(n - k), paused);
+  }
+  first_ = (first_ + 1) % n;
+}
+
+}  // namespace top_sim_ros
