@@ -64,10 +64,21 @@ class StartErrors(unittest.TestCase):
             text = f.read().replace('dt: 1.0e-4', 'dt: 1e-300')
         self.assert_refused('start_dt', {'scene_file': scene_file(text)}, 'integrator.dt: 1e-300 is out of range')
 
-    def test_scene_file_and_scene_parameters_together_are_refused(self):
-        rospy.set_param('/start_both/initial/spin', 300.0)
+    def test_scene_file_and_scene_parameter_together_are_refused(self):
+        rospy.set_param('/start_both/scene/initial/spin', 300.0)
         self.assert_refused('start_both', {'scene_file': DEFAULT_SCENE}, 'the scene comes from one place',
-                            'initial')
+                            '/start_both/scene')
+
+    def test_scene_key_outside_the_scene_namespace_is_unknown(self):
+        # As top_sim_run refuses an unknown key, the node refuses one under ~ (here a scene key put beside the scene).
+        rospy.set_param('/start_stray/initial/spin', 300.0)
+        self.assert_refused('start_stray', {'scene_file': DEFAULT_SCENE}, '/start_stray/initial: unknown parameter',
+                            '/start_stray/scene')
+
+    def test_scene_text_parameter_gets_the_loader_s_checks(self):
+        # ~scene as YAML text is read like a file: a duplicate key is refused, as top_sim_run refuses it.
+        rospy.set_param('/start_text/scene', 'top: aluminium\ntop: steel\nfriction: pmma\n')
+        self.assert_refused('start_text', {}, 'bad scene', '/start_text/scene', 'top: given twice')
 
     def test_bad_dynamic_reconfigure_value_at_start_is_refused(self):
         rospy.set_param('/start_spin_big/spin', 1.0e308)
