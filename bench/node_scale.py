@@ -1,0 +1,205 @@
+#!/usr/bin/env python3
+"""Scale of top_sim_node with many tops (docs/node_benchmark.md): for each configuration, one node with N default
+tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; measured over a window after a warm-up:
+
+  - the rate at which top_states (the array of every top) and /tf arrive at a subscriber (raw bytes, not
+    deserialized, so the Python subscriber is not the bottleneck),
+  - the node's CPU (utime + stime from /proc) as a share of one core, and per top per wall second,
+  - the latency of a command to the LAST spawned top (its NAME/inclination until its NAME/top_state shows it),
+  - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
+
+  bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--json FILE]
+
+A configuration is TOPS:RATE[:notf]. Figures are noisy on a shared 2-core machine: the load average is recorded.
+"""
+import argparse
+import json
+import os
+import statistics
+import subprocess
+import sys
+import threading
+import time
+import warnings
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), '..', 'scripts'))
+import node_harness as nh  # noqa: E402
+
+NODE = '/top_sim_scale'
+
+
+class Arrivals(object):
+    """Wall arrival times of a topic's messages, counted without deserializing them."""
+
+    def __init__(self, rospy, topic):
+        self.times = []
+        self.lock = threading.Lock()
+        self.sub = rospy.Subscriber(topic, rospy.AnyMsg, self.on_msg, queue_size=100, tcp_nodelay=True)
+
+    def on_msg(self, _):
+        with self.lock:
+            self.times.append(time.perf_counter())
+
+    def rate(self, t0, t1):
+        with self.lock:
+            n = sum(1 for t in self.times if t0 <= t < t1)
+        return n / (t1 - t0)
+
+
+class Latency(object):
+    """Command -> state latency of one top: the time from publishing an inclination to the first TopState with it."""
+
+    def __init__(self, rospy, top_sim_msg, prefix):
+        self.lock = threading.Lock()
+        self.pending = None
+        self.samples = []
+        self.sub = rospy.Subscriber(prefix + 'top_state', top_sim_msg.TopState, self.on_state, queue_size=100,
+                                    tcp_nodelay=True)
+        from std_msgs.msg import Float64
+        self.Float64 = Float64
+        with warnings.catch_warnings():  # queue_size=None on purpose: publish() writes in this thread (exact send time)
+            warnings.simplefilter('ignore', SyntaxWarning)
+            self.pub = rospy.Publisher(prefix + 'inclination', Float64, queue_size=None, tcp_nodelay=True)
+
+    def on_state(self, m):
+        with self.lock:
+            if self.pending and abs(m.alpha - self.pending[0]) < 1e-12:
+                self.samples.append(time.perf_counter() - self.pending[1])
+                self.pending = None
+
+    def send(self, alpha):
+        with self.lock:
+            self.pending = (alpha, time.perf_counter())
+        self.pub.publish(self.Float64(alpha))
+
+
+class Diagnostics(object):
+    def __init__(self, rospy):
+        from diagnostic_msgs.msg import DiagnosticArray
+        self.values = {}
+        self.sub = rospy.Subscriber('/diagnostics', DiagnosticArray, self.on_diag, queue_size=10)
+
+    def on_diag(self, m):
+        for st in m.status:
+            if 'simulation' in st.name:
+                self.values = {kv.key: kv.value for kv in st.values}
+
+
+def set_parameters(env, tops, rate, tf):
+    import rospy
+    scene = os.path.join(nh.REPO, 'config', 'scenes', 'default.yaml')
+    rospy.set_param(NODE, {
+        'scene_file': scene, 'config_dir': os.path.join(nh.REPO, 'config'), 'publish_rate': float(rate),
+        'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)}})
+
+
+def start_node(env, log_path, timeout):
+    node_bin = subprocess.run(['bash', '-c', 'echo $(catkin_find top_sim top_sim_node | head -1)'], env=env,
+                              capture_output=True, universal_newlines=True).stdout.strip()
+    log = open(log_path, 'w')
+    proc = subprocess.Popen([node_bin, '__name:=' + NODE.lstrip('/')], env=env, stdout=log, stderr=subprocess.STDOUT,
+                            start_new_session=True)
+    log.close()
+    deadline = time.time() + timeout
+    pid = None
+    while pid is None and time.time() < deadline and proc.poll() is None:
+        time.sleep(0.5)
+        try:
+            pid = nh.node_pid(env['ROS_MASTER_URI'], NODE)
+        except OSError:
+            pid = None
+    if pid is None:
+        nh.stop_group(proc)
+        raise RuntimeError('%s did not come up (see %s)' % (NODE, log_path))
+    return proc, pid
+
+
+def wait_for_all_tops(rospy, tops, timeout):
+    from top_sim.srv import ListTops
+    rospy.wait_for_service(NODE + '/list', timeout=timeout)
+    lst = rospy.ServiceProxy(NODE + '/list', ListTops)
+    deadline = time.time() + timeout
+    while len(lst().names) < tops:
+        if time.time() > deadline:
+            raise RuntimeError('only %d of %d tops after %g s' % (len(lst().names), tops, timeout))
+        time.sleep(0.5)
+
+
+def measure(args, env, tops, rate, tf, index):
+    import rospy
+    import top_sim.msg as top_sim_msg
+    log_path = os.path.join(args.log_dir, 'scale_%d_%g_%s.log' % (tops, rate, 'tf' if tf else 'notf'))
+    set_parameters(env, tops, rate, tf)
+    t_start = time.perf_counter()
+    proc, pid = start_node(env, log_path, timeout=600)
+    try:
+        wait_for_all_tops(rospy, tops, timeout=600)
+        startup = time.perf_counter() - t_start
+        states = Arrivals(rospy, NODE + '/top_states')
+        tfs = Arrivals(rospy, '/tf')
+        last = NODE + '/' + ('t%04d/' % (tops - 1) if tops > 1 else '')
+        latency = Latency(rospy, top_sim_msg, last)
+        diag = Diagnostics(rospy)
+        time.sleep(args.warmup)
+        t0, c0 = time.perf_counter(), nh.cpu_ticks(pid)
+        load0 = nh.loadavg_1min()
+        k = 0
+        while time.perf_counter() < t0 + args.seconds:
+            latency.send(0.1 + 0.01 * (k % 2 + 1))  # alternates 0.11 / 0.12 rad: each one a change
+            k += 1
+            time.sleep(0.5)
+        t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
+        cpu = (c1 - c0) / nh.CLK_TCK / (t1 - t0)
+        lat = latency.samples
+        d = diag.values
+        return {
+            'tops': tops, 'rate_hz': rate, 'tf': tf, 'startup_s': round(startup, 2),
+            'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
+            'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
+            'latency_samples': len(lat),
+            'latency_p50_ms': round(1e3 * statistics.median(lat), 2) if lat else None,
+            'latency_max_ms': round(1e3 * max(lat), 2) if lat else None,
+            'tops_behind': d.get('tops falling behind'), 'achieved_rtf': d.get('achieved real-time factor'),
+            'publish_rate_achieved': d.get('publish rate achieved [Hz]'),
+            'load_before': round(load0, 2), 'load_after': round(nh.loadavg_1min(), 2),
+        }
+    finally:
+        for sub in (states, tfs, latency, diag) if 'diag' in locals() else ():
+            sub.sub.unregister()
+        nh.stop_group(proc)
+
+
+def parse_args():
+    p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
+    p.add_argument('--configs', default='1:200,10:200,100:200,1000:50,1000:50:notf')
+    p.add_argument('--seconds', type=float, default=20.0)
+    p.add_argument('--warmup', type=float, default=5.0)
+    p.add_argument('--json', default='')
+    p.add_argument('--log-dir', default='/tmp/top_sim_scale')
+    return p.parse_args()
+
+
+def main():
+    args = parse_args()
+    os.makedirs(args.log_dir, exist_ok=True)
+    env = nh.ros_environment('node_scale')
+    master = nh.start_master(env, 'node_scale')
+    results = []
+    try:
+        import rospy
+        rospy.init_node('top_sim_scale_bench', anonymous=True, disable_signals=True)
+        for i, c in enumerate(args.configs.split(',')):
+            parts = c.split(':')
+            tops, rate, tf = int(parts[0]), float(parts[1]), not (len(parts) > 2 and parts[2] == 'notf')
+            r = measure(args, env, tops, rate, tf, i)
+            print(json.dumps(r), flush=True)
+            results.append(r)
+    finally:
+        nh.stop_group(master)
+    if args.json:
+        with open(args.json, 'w') as f:
+            json.dump({'seconds': args.seconds, 'warmup': args.warmup, 'results': results}, f, indent=1)
+
+
+if __name__ == '__main__':
+    main()
