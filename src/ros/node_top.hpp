@@ -21,6 +21,10 @@ namespace top_sim_ros {
 // What the publishing side keeps per top.
 struct TopOutput {
   ros::Publisher state, path;
+  // Subscriber counts kept by the publishers' connect callbacks: Publisher::getNumSubscribers() looks the topic up
+  // among all of the node's publications by name, which with thousands of tops cost more than the physics.
+  // Shared with the callbacks, which roscpp may still run after the top is gone.
+  std::shared_ptr<int> state_subscribers = std::make_shared<int>(0), path_subscribers = std::make_shared<int>(0);
   nav_msgs::Path trail;     // contact-point trail
   ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
 };

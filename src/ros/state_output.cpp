@@ -19,9 +19,23 @@ StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePa
   if (!params_.lcm_url.empty()) open_lcm();
 }
 
+namespace {
+
+template <class M>
+ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t queue,
+                       const std::shared_ptr<int>& count) {
+  return pnh.advertise<M>(
+      topic, queue, [count](const ros::SingleSubscriberPublisher&) { ++*count; },
+      [count](const ros::SingleSubscriberPublisher&) { --*count; });
+}
+
+}  // namespace
+
+// The callbacks run in spinOnce() on the loop's thread.
 void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
-  top.output.state = pnh.advertise<top_sim::TopState>(top.prefix() + "top_state", 10);
-  top.output.path = pnh.advertise<nav_msgs::Path>(top.prefix() + "path", 2);
+  TopOutput& out = top.output;
+  out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers);
+  out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers);
 }
 
 ros::Time StateOutput::stamp(const NodeTop& top) const {
@@ -54,6 +68,11 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   const bool array = states_.getNumSubscribers() > 0;
   top_sim::TopStateArray all;
   std::vector<geometry_msgs::TransformStamped> tf;
+  tf.reserve(2 * tops.size());
+  if (array) {
+    all.names.reserve(tops.size());
+    all.states.reserve(tops.size());
+  }
   for (auto& t : tops) {
     NodeTop& top = *t;
     const top_sim::Snapshot s = top.sim().snapshot();
@@ -66,7 +85,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
     update_trail(top, s, stamp);
     add_transforms(top, s, stamp, tf);
     if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor());
-    const bool subscribed = top.output.state.getNumSubscribers() > 0;
+    const bool subscribed = *top.output.state_subscribers > 0;
     if (!subscribed && !array) continue;  // a message nobody reads is not built (thousands of tops)
     top_sim::TopState msg;
     to_msg(s, stamp, top.frames().plane, msg);
@@ -127,7 +146,8 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   if (wall - last_path_wall_ < 1.0 / params_.path_rate) return;
   for (auto& t : tops) {
     TopOutput& out = t->output;
-    if (out.path.getNumSubscribers() == 0) continue;
+    if (*out.path_subscribers <= 0) continue;
+    trim_trail(out.trail);
     out.trail.header.stamp = stamp(*t);
     out.trail.header.frame_id = t->frames().plane;
     out.path.publish(out.trail);
@@ -135,7 +155,7 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   last_path_wall_ = wall;
 }
 
-// Contact-point trail: a pose each time the point has moved path_resolution, at most path_length kept.
+// Contact-point trail: a pose each time the point has moved path_resolution; path_length published at most.
 void StateOutput::update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp) {
   nav_msgs::Path& path = top.output.trail;
   const Eigen::Vector3d p = s.contact_point;
@@ -151,6 +171,12 @@ void StateOutput::update_trail(NodeTop& top, const top_sim::Snapshot& s, const r
   ps.pose.position.z = p.z();
   ps.pose.orientation.w = 1.0;
   path.poses.push_back(ps);
+  // Trimmed in chunks (erasing the oldest pose each tick moved path_length poses per tick and top).
+  const std::size_t keep = static_cast<std::size_t>(params_.path_length);
+  if (path.poses.size() > keep + keep / 4 + 1) trim_trail(path);
+}
+
+void StateOutput::trim_trail(nav_msgs::Path& path) const {
   const std::size_t keep = static_cast<std::size_t>(params_.path_length);
   if (path.poses.size() > keep) path.poses.erase(path.poses.begin(), path.poses.begin() + (path.poses.size() - keep));
 }

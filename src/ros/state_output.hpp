@@ -44,6 +44,7 @@ class StateOutput {
   void publish_markers(TopSet& tops, double wall);
   void publish_paths(TopSet& tops, double wall);
   void update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp);
+  void trim_trail(nav_msgs::Path& path) const;
   void publish_lcm(const top_sim::Snapshot& s, double achieved_factor);
   void open_lcm();
 
