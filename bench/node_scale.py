@@ -132,6 +132,7 @@ def measure(args, env, tops, rate, tf, index):
     set_parameters(env, tops, rate, tf)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600)
+    subs = []
     try:
         wait_for_all_tops(rospy, tops, timeout=600)
         startup = time.perf_counter() - t_start
@@ -140,6 +141,7 @@ def measure(args, env, tops, rate, tf, index):
         last = NODE + '/' + ('t%04d/' % (tops - 1) if tops > 1 else '')
         latency = Latency(rospy, top_sim_msg, last)
         diag = Diagnostics(rospy)
+        subs = [states.sub, tfs.sub, latency.sub, latency.pub, diag.sub]  # unregistered before the next node
         time.sleep(args.warmup)
         t0, c0 = time.perf_counter(), nh.cpu_ticks(pid)
         load0 = nh.loadavg_1min()
@@ -164,8 +166,8 @@ def measure(args, env, tops, rate, tf, index):
             'load_before': round(load0, 2), 'load_after': round(nh.loadavg_1min(), 2),
         }
     finally:
-        for sub in (states, tfs, latency, diag) if 'diag' in locals() else ():
-            sub.sub.unregister()
+        for sub in subs:
+            sub.unregister()
         nh.stop_group(proc)
 
 
@@ -199,6 +201,20 @@ def main():
     if args.json:
         with open(args.json, 'w') as f:
             json.dump({'seconds': args.seconds, 'warmup': args.warmup, 'results': results}, f, indent=1)
+    print(markdown(results))
+
+
+def markdown(results):
+    """The table of docs/node_benchmark.md."""
+    rows = ['| tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
+            '[us per s] | command latency p50 / max [ms] | tops behind | start-up [s] | load |',
+            '|---|---|---|---|---|---|---|---|---|---|']
+    for r in results:
+        rows.append('| %d | %g | %s | %.1f | %.3f | %.0f | %s / %s | %s | %.1f | %.1f-%.1f |' % (
+            r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
+            r['cpu_us_per_top_per_s'], r['latency_p50_ms'], r['latency_max_ms'], r['tops_behind'], r['startup_s'],
+            r['load_before'], r['load_after']))
+    return '\n'.join(rows)
 
 
 if __name__ == '__main__':
