@@ -14,7 +14,7 @@ catkin_package(
                  rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure)
 
 # Message conversions and the parameter-tree reader, shared by the node and its unit tests.
-add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp)
+add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/top_mesh.cpp)
 target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
 add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp)
