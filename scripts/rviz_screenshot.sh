@@ -3,7 +3,12 @@
 # screenshot of the rviz window, then a clean shutdown. No display or roscore needed.
 #   scripts/rviz_screenshot.sh [OUT.png]
 # Environment: TOP_SIM_SCENE (default config/scenes/default.yaml), TOP_SIM_SHOT_RTF (real-time factor, default 2),
-# TOP_SIM_SHOT_WAIT (wall seconds of streaming before the shot, default 8), TOP_SIM_SHOT_SIZE (default 1280x800).
+# TOP_SIM_SHOT_WAIT (wall seconds of streaming before the shot, default 8), TOP_SIM_SHOT_SIZE (default 1280x800),
+# TOP_SIM_SHOT_LAUNCH (launch file of the package, default top_sim.launch; TOP_SIM_SCENE is passed only to that
+# one) and TOP_SIM_SHOT_TOPIC (a TopState topic that shows streaming has started, default /top_sim/top_state).
+# The geometric-phase figure:
+#   TOP_SIM_SHOT_LAUNCH=geometric_phase.launch TOP_SIM_SHOT_TOPIC=/spin400/top_sim/top_state TOP_SIM_SHOT_RTF=1 \
+#     TOP_SIM_SHOT_WAIT=18 scripts/rviz_screenshot.sh docs/img/geometric_phase.png
 # Needs the Debian packages xvfb, x11-utils (xwininfo) and python3-pil.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -13,6 +18,10 @@ SCENE=$(realpath -m "${TOP_SIM_SCENE:-$TOP_SIM_REPO/config/scenes/default.yaml}"
 RTF=${TOP_SIM_SHOT_RTF:-2}
 WAIT=${TOP_SIM_SHOT_WAIT:-8}
 SIZE=${TOP_SIM_SHOT_SIZE:-1280x800}
+LAUNCH=${TOP_SIM_SHOT_LAUNCH:-top_sim.launch}
+TOPIC=${TOP_SIM_SHOT_TOPIC:-/top_sim/top_state}
+LAUNCH_ARGS=""
+if [ "$LAUNCH" = top_sim.launch ]; then LAUNCH_ARGS="scene:=$SCENE"; fi
 
 for tool in xvfb-run xwininfo; do
   command -v "$tool" >/dev/null 2>&1 || top_sim_die "$tool not found (Debian packages: xvfb, x11-utils)"
@@ -30,21 +39,21 @@ fi
 PORT=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
 export ROS_MASTER_URI=http://localhost:$PORT
 LOG=$(mktemp -d /tmp/top_sim_shot.XXXXXX)
-top_sim_log "rviz screenshot: scene $SCENE, real_time_factor $RTF, ${WAIT} s; logs in $LOG"
+top_sim_log "rviz screenshot: $LAUNCH $LAUNCH_ARGS, real_time_factor $RTF, ${WAIT} s; logs in $LOG"
 
-export OUT SCENE RTF WAIT PORT LOG TOP_SIM_REPO
+export OUT LAUNCH LAUNCH_ARGS TOPIC RTF WAIT PORT LOG TOP_SIM_REPO
 # Software GL: Xvfb has no GPU; rviz's OGRE renders through Mesa llvmpipe.
 export LIBGL_ALWAYS_SOFTWARE=1
 xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
   set -m   # job control: the background roslaunch receives SIGINT like from a terminal
-  roslaunch -p "$PORT" top_sim top_sim.launch scene:="$SCENE" rviz:=true real_time_factor:="$RTF" \
+  roslaunch -p "$PORT" top_sim "$LAUNCH" $LAUNCH_ARGS rviz:=true real_time_factor:="$RTF" \
     >"$LOG/roslaunch.log" 2>&1 &
   launch=$!
   status=0
   # Streaming has started once one TopState arrives (rostopic fails at once while the master is not up yet).
   streaming=false
   for _ in $(seq 30); do
-    if timeout 10 rostopic echo -n 1 /top_sim/top_state/sim_time >"$LOG/first_state.txt" 2>&1; then
+    if timeout 10 rostopic echo -n 1 "$TOPIC/sim_time" >"$LOG/first_state.txt" 2>&1; then
       streaming=true; break
     fi
     kill -0 "$launch" 2>/dev/null || break
@@ -53,9 +62,9 @@ xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
   if $streaming; then
     sleep "$WAIT"
     /usr/bin/python3 "$TOP_SIM_REPO/scripts/grab_window.py" --title RViz --out "$OUT" --timeout 30 || status=$?
-    rostopic echo -n 1 /top_sim/top_state/sim_time >"$LOG/last_state.txt" 2>&1 || true
+    rostopic echo -n 1 "$TOPIC/sim_time" >"$LOG/last_state.txt" 2>&1 || true
   else
-    echo "no TopState on /top_sim/top_state within 60 s (see $LOG/roslaunch.log)" >&2
+    echo "no TopState on $TOPIC within 60 s (see $LOG/roslaunch.log)" >&2
     status=1
   fi
   kill -INT "$launch" 2>/dev/null || true

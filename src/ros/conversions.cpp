@@ -4,12 +4,28 @@
 #include <cmath>
 #include <sstream>
 
+#include "top_mesh.hpp"
 #include "top_sim/plane.hpp"
 
 namespace top_sim_ros {
 
 namespace {
 
+// Marker ids, one per kind and fixed: an update replaces the marker of the same (ns, id) in rviz.
+enum MarkerId : int {
+  kPlaneMarker = 0,
+  kTipMarker,
+  kBodyMarker,
+  kStripeMarker,
+  kStemMarker,
+  kSpinMarker,
+  kVelocityMarker,
+  kModeMarker,
+};
+
+constexpr int kBodySegments = 32;        // facets round the body: smooth at rviz's usual distances
+constexpr double kStripeWidth = 0.5;     // [rad] of the body's circumference painted, centred on body x
+constexpr double kStripeRaise = 0.02;    // stripe height above the surface, relative to the body radius
 
 geometry_msgs::Point point(const Eigen::Vector3d& v) {
   geometry_msgs::Point p;
@@ -29,13 +45,13 @@ geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
   return m;
 }
 
-visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int type,
-                                  float r, float g, float b) {
+visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
+                                  int type, float r, float g, float b) {
   visualization_msgs::Marker m;
   m.header.frame_id = frame;
   m.header.stamp = stamp;
   m.ns = ns;
-  m.id = 0;
+  m.id = id;
   m.type = type;
   m.action = visualization_msgs::Marker::ADD;
   m.pose.orientation.w = 1.0;
@@ -63,7 +79,8 @@ Colour mode_colour(top_sim::ContactMode mode) {
 
 // Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
 visualization_msgs::Marker plane_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
-  visualization_msgs::Marker plane = marker(frame, stamp, "plane", visualization_msgs::Marker::CUBE, 0.75f, 0.78f, 0.85f);
+  visualization_msgs::Marker plane = marker(frame, stamp, "plane", kPlaneMarker, visualization_msgs::Marker::CUBE, 0.75f,
+                                                  0.78f, 0.85f);
   const double cell = 0.25;
   plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
   plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
@@ -78,18 +95,44 @@ visualization_msgs::Marker plane_marker(const top_sim::Snapshot& s, const std::s
 void add_arrows(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp,
                 visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
-  Marker spin = marker(frame, stamp, "spin", Marker::ARROW, 0.1f, 0.5f, 1.0f);
+  Marker spin = marker(frame, stamp, "spin", kSpinMarker, Marker::ARROW, 0.1f, 0.5f, 1.0f);
   const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
   spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
   spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
   out.markers.push_back(spin);
 
-  Marker vel = marker(frame, stamp, "velocity", Marker::ARROW, 0.1f, 0.8f, 0.2f);
+  Marker vel = marker(frame, stamp, "velocity", kVelocityMarker, Marker::ARROW, 0.1f, 0.8f, 0.2f);
   const double v = s.tip_velocity.norm();
   const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
   vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
   vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
   out.markers.push_back(vel);
+}
+
+// Body of revolution in the body's contact-mode colour, a stripe fixed to the body (it turns with the spin phase
+// that tf carries in the top frame) and the stem; all in the top frame.
+void add_body(const TopShape& shape, Colour colour, const std::string& frame, const ros::Time& stamp,
+              visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  Marker body = marker(frame, stamp, "body", kBodyMarker, Marker::TRIANGLE_LIST, colour.r, colour.g, colour.b);
+  body.scale.x = body.scale.y = body.scale.z = 1.0;  // TRIANGLE_LIST points are multiplied by the scale
+  for (const Eigen::Vector3d& p : revolve(shape.profile, kBodySegments, 0.0, 2.0 * M_PI))
+    body.points.push_back(point(p));
+  out.markers.push_back(body);
+
+  Marker stripe = marker(frame, stamp, "stripe", kStripeMarker, Marker::TRIANGLE_LIST, 1.0f, 0.5f, 0.0f);
+  stripe.scale = body.scale;
+  const int stripe_segments = std::max(1, static_cast<int>(std::ceil(kStripeWidth * kBodySegments / (2.0 * M_PI))));
+  for (const Eigen::Vector3d& p : revolve(raised_profile(shape.profile, kStripeRaise * shape.body_radius),
+                                          stripe_segments, -0.5 * kStripeWidth, kStripeWidth))
+    stripe.points.push_back(point(p));
+  out.markers.push_back(stripe);
+
+  Marker stem = marker(frame, stamp, "stem", kStemMarker, Marker::CYLINDER, 0.3f, 0.3f, 0.35f);
+  stem.pose.position.z = 0.5 * (shape.stem_bottom + shape.stem_top);
+  stem.scale.x = stem.scale.y = 2.0 * shape.stem_radius;
+  stem.scale.z = shape.stem_top - shape.stem_bottom;
+  out.markers.push_back(stem);
 }
 
 }  // namespace
@@ -157,37 +200,23 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
                 visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   out.markers.clear();
-  const double f = top.com_offset, R = top.tip_radius;
-  // Body disk with the axial inertia of the top: I_f = m r^2 / 2.
-  const double body_r = std::sqrt(2.0 * top.inertia_axial / top.mass);
-  const double body_h = std::max(0.25 * body_r, 2.0 * R);
+  const TopShape shape = top_shape(top);
 
   out.markers.push_back(plane_marker(s, frames.plane, stamp));
 
-  Marker tip = marker(frames.plane, stamp, "tip", Marker::SPHERE, 0.9f, 0.2f, 0.2f);
+  Marker tip = marker(frames.plane, stamp, "tip", kTipMarker, Marker::SPHERE, 0.9f, 0.2f, 0.2f);
   tip.pose.position = point(s.tip_center);
-  tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * R;
+  tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * top.tip_radius;
   out.markers.push_back(tip);
 
   const Colour colour = mode_colour(s.contact_mode);
-  Marker body = marker(frames.top, stamp, "body", Marker::CYLINDER, colour.r, colour.g, colour.b);
-  body.scale.x = body.scale.y = 2.0 * body_r;
-  body.scale.z = body_h;
-  out.markers.push_back(body);
-
-  // Stem along the figure axis (top frame z) from the tip sphere through the body.
-  Marker stem = marker(frames.top, stamp, "stem", Marker::CYLINDER, 0.3f, 0.3f, 0.35f);
-  const double z0 = -f, z1 = 0.5 * f + body_h;
-  stem.pose.position.z = 0.5 * (z0 + z1);
-  stem.scale.x = stem.scale.y = std::max(0.4 * body_h, 1.5 * R);
-  stem.scale.z = z1 - z0;
-  out.markers.push_back(stem);
-
+  add_body(shape, colour, frames.top, stamp, out);
   add_arrows(s, frames.plane, stamp, out);
 
   // The contact mode as text above the top ("slipping", "rolling", "flight"), in the body's colour.
-  Marker mode = marker(frames.plane, stamp, "contact_mode", Marker::TEXT_VIEW_FACING, colour.r, colour.g, colour.b);
-  mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, 0.5 * f + body_h + 0.02));
+  Marker mode = marker(frames.plane, stamp, "contact_mode", kModeMarker, Marker::TEXT_VIEW_FACING, colour.r,
+                       colour.g, colour.b);
+  mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, shape.stem_top + 0.02));
   mode.scale.z = 0.01;  // text height [m]
   mode.text = top_sim::to_string(s.contact_mode);
   out.markers.push_back(mode);

@@ -27,7 +27,8 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
 void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
                    geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top);
 
-// Plane, tip sphere, body and stem, spin and velocity arrows.
+// Plane, tip sphere, body of revolution with a stripe fixed to it, stem (top_mesh.hpp), spin and velocity arrows,
+// contact-mode text; one marker per namespace, each with its own fixed small id.
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 visualization_msgs::MarkerArray& out);
 

@@ -2,11 +2,19 @@
 // Snapshot -> tf / TopState.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <limits>
+#include <map>
+#include <set>
+#include <utility>
+
+#include <yaml-cpp/yaml.h>
 
 #include "conversions.hpp"
+#include "top_mesh.hpp"
 #include "top_sim/scene.hpp"
+#include "top_sim/simulator.hpp"
 
 using top_sim_ros::to_command;
 
@@ -169,6 +177,146 @@ TEST(Markers, ContactModeShowsAsBodyColourAndText) {
   EXPECT_TRUE(a.r != b.r || a.g != b.g || a.b != b.b) << "slipping and rolling look the same";
   EXPECT_TRUE(b.r != c.r || b.g != c.g || b.b != c.b) << "rolling and flight look the same";
   EXPECT_TRUE(a.r != c.r || a.g != c.g || a.b != c.b) << "slipping and flight look the same";
+}
+
+// The three tops of config/tops and the homogeneous ball (f = 0, body inside the tip sphere) of config/scenes.
+std::vector<top_sim::Top> drawn_tops() {
+  std::vector<top_sim::Top> tops;
+  for (const char* name : {"aluminium", "steel", "wood"}) {
+    const YAML::Node y = YAML::Load(std::string("top: ") + name);
+    tops.push_back(top_sim::parse_scene(y, "test", TOP_SIM_TEST_CONFIG_DIR).model.top);
+  }
+  top_sim::Top ball;
+  ball.mass = 0.1; ball.tip_radius = 0.01; ball.com_offset = 0.0;
+  ball.inertia_axial = ball.inertia_transverse = 4.0e-6;
+  tops.push_back(ball);
+  return tops;
+}
+
+using Key = std::array<double, 3>;
+Key key(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
+
+// Closed and consistently oriented: every directed edge occurs once and its reverse once (an edge-manifold,
+// orientable surface without boundary); outward: the divergence-theorem volume is positive and equals the
+// solid of revolution's (Pappus) times the N-gon's area ratio N sin(2 pi / N) / (2 pi), exact for this mesh.
+TEST(TopMesh, BodyIsClosedOutwardAndFinite) {
+  const int n = 32;
+  for (const top_sim::Top& top : drawn_tops()) {
+    const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
+    const std::vector<Eigen::Vector3d> tri = top_sim_ros::revolve(shape.profile, n, 0.0, 2.0 * M_PI);
+    ASSERT_EQ(tri.size() % 3, 0u);
+    ASSERT_GT(tri.size(), 0u);
+    std::map<std::pair<Key, Key>, int> edges;
+    double volume = 0.0;
+    for (std::size_t i = 0; i < tri.size(); i += 3) {
+      for (int k = 0; k < 3; ++k) {
+        ASSERT_TRUE(tri[i + k].allFinite()) << "mass " << top.mass;
+        ++edges[{key(tri[i + k]), key(tri[i + (k + 1) % 3])}];
+      }
+      const Eigen::Vector3d normal = (tri[i + 1] - tri[i]).cross(tri[i + 2] - tri[i]);
+      EXPECT_GT(normal.norm(), 0.0) << "degenerate triangle " << i / 3;
+      volume += tri[i].dot(tri[i + 1].cross(tri[i + 2])) / 6.0;
+    }
+    for (const auto& e : edges) {
+      EXPECT_EQ(e.second, 1) << "edge used twice in one direction";
+      const auto reverse = edges.find({e.first.second, e.first.first});
+      EXPECT_TRUE(reverse != edges.end() && reverse->second == 1) << "open or inconsistently oriented edge";
+    }
+    double pappus = 0.0;  // pi/3 sum (r0^2 + r0 r1 + r1^2)(z1 - z0) over the counter-clockwise profile
+    for (std::size_t i = 0; i + 1 < shape.profile.size(); ++i) {
+      const Eigen::Vector2d a = shape.profile[i], b = shape.profile[i + 1];
+      pappus += M_PI / 3.0 * (a.x() * a.x() + a.x() * b.x() + b.x() * b.x()) * (b.y() - a.y());
+    }
+    EXPECT_GT(volume, 0.0) << "triangles face inwards";
+    EXPECT_NEAR(volume, pappus * n * std::sin(2.0 * M_PI / n) / (2.0 * M_PI), 1e-9 * pappus);
+  }
+}
+
+// Sizes follow the model: the widest point is the disc with the top's axial inertia, the lowest the tip-sphere
+// centre (f below the centre of mass); a heavier top of the same inertia is narrower.
+TEST(TopMesh, SizesComeFromTheModel) {
+  for (top_sim::Top top : drawn_tops()) {
+    for (const double mass_factor : {1.0, 4.0}) {
+      top.mass *= mass_factor;
+      const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
+      double r_max = 0.0, z_min = 1.0, z_max = -1.0;
+      for (const Eigen::Vector3d& p : top_sim_ros::revolve(shape.profile, 32, 0.0, 2.0 * M_PI)) {
+        r_max = std::max(r_max, std::hypot(p.x(), p.y()));
+        z_min = std::min(z_min, p.z());
+        z_max = std::max(z_max, p.z());
+      }
+      EXPECT_NEAR(r_max, std::sqrt(2.0 * top.inertia_axial / top.mass), 1e-15);
+      EXPECT_NEAR(z_min, -std::max(top.com_offset, 0.5 * shape.rim_height), 1e-15);
+      EXPECT_NEAR(z_max, shape.stem_bottom, 1e-15);
+      EXPECT_GE(shape.rim_height, 2.0 * top.tip_radius);
+      EXPECT_GT(shape.stem_top, shape.stem_bottom);
+      EXPECT_GT(shape.stem_radius, 0.0);
+      EXPECT_LE(shape.stem_radius, 0.5 * r_max);
+    }
+  }
+}
+
+const visualization_msgs::Marker* find_marker(const visualization_msgs::MarkerArray& a, const std::string& ns) {
+  for (const auto& m : a.markers)
+    if (m.ns == ns) return &m;
+  return nullptr;
+}
+
+// Body, stripe and stem live in the top frame, locked to it, so tf's plane -> top rotation (spin phase included)
+// turns them; the stripe is a band off the axis on one side (body +x), raised above the body's surface.
+TEST(Markers, BodyStripeAndStemAreDrawnInTheTopFrame) {
+  const top_sim::Top top = drawn_tops().front();
+  top_sim_ros::Frames frames;
+  frames.top = "spin200/top";
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), frames, a);
+  std::set<int> ids;
+  for (const auto& m : a.markers) {
+    EXPECT_TRUE(ids.insert(m.id).second) << "id " << m.id << " used twice";
+    EXPECT_LT(m.id, 16) << m.ns;
+    EXPECT_GE(m.id, 0) << m.ns;
+  }
+  const double rb = top_sim_ros::top_shape(top).body_radius;
+  for (const char* ns : {"body", "stripe", "stem"}) {
+    const visualization_msgs::Marker* m = find_marker(a, ns);
+    ASSERT_NE(m, nullptr) << ns;
+    EXPECT_EQ(m->header.frame_id, "spin200/top") << ns;
+    EXPECT_TRUE(m->frame_locked) << ns;
+  }
+  const visualization_msgs::Marker& stripe = *find_marker(a, "stripe");
+  EXPECT_EQ(stripe.type, visualization_msgs::Marker::TRIANGLE_LIST);
+  EXPECT_EQ(stripe.scale.x, 1.0);
+  ASSERT_FALSE(stripe.points.empty());
+  for (const auto& p : stripe.points) {
+    EXPECT_GT(p.x, 0.0);                                         // one side only: the spin shows as its turning
+    EXPECT_LE(std::abs(p.y), std::sin(0.5 * 0.5) * 1.05 * rb);  // within the stripe's half-width (0.25 rad)
+  }
+  EXPECT_GT(std::hypot(stripe.points.front().x, stripe.points.front().y), 0.0);
+  double stripe_r_max = 0.0;
+  for (const auto& p : stripe.points) stripe_r_max = std::max(stripe_r_max, std::hypot(p.x, p.y));
+  EXPECT_GT(stripe_r_max, rb) << "the stripe must stand out of the rim, not inside it";
+  EXPECT_LT(stripe_r_max, 1.05 * rb);
+}
+
+// The plane -> top transform carries the spin phase: over 2 ms at 200 rad/s the body x axis turns by about
+// 0.4 rad about the figure axis (psi' = spin at a start without transverse rotation, physics.md section 2).
+TEST(Transforms, TopFrameTurnsWithTheSpin) {
+  top_sim::Simulator sim(top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml"));
+  auto body_axes = [&]() {
+    geometry_msgs::TransformStamped wp, pt;
+    top_sim_ros::to_transforms(sim.snapshot(), ros::Time(1.0), top_sim_ros::Frames(), wp, pt);
+    const auto& q = pt.transform.rotation;
+    const Eigen::Quaterniond r(q.w, q.x, q.y, q.z);
+    return std::make_pair(Eigen::Vector3d(r * Eigen::Vector3d::UnitX()), Eigen::Vector3d(r * Eigen::Vector3d::UnitZ()));
+  };
+  const auto [x0, f0] = body_axes();
+  const double spin = sim.snapshot().spin, dt = 2.0e-3;
+  ASSERT_TRUE(sim.advance_to(dt));
+  const auto [x1, f1] = body_axes();
+  const double turned = std::atan2(x0.cross(x1).dot(f1), x0.dot(x1));
+  EXPECT_GT(std::abs(spin), 100.0);
+  EXPECT_NEAR(turned, spin * dt, 0.01 * std::abs(spin * dt));
+  EXPECT_LT((f1 - f0).norm(), 0.01) << "the figure axis barely moves in 2 ms";
 }
 
 TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {

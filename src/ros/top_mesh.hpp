@@ -1,0 +1,37 @@
+// The drawn top: a body of revolution sized from top_sim::Top, as triangles for an rviz TRIANGLE_LIST marker.
+// Pure geometry in the top frame (origin at the centre of mass, z = figure axis); no ROS types, no physics.
+#pragma once
+
+#include <Eigen/Core>
+#include <vector>
+
+#include "top_sim/model.hpp"
+
+namespace top_sim_ros {
+
+// Sizes of the drawn top [m]. The model has no outer shape: the body is the uniform disc with the top's axial
+// inertia (I_f = m r^2 / 2), its rim centred on the centre of mass, a cone down to the tip sphere (f below).
+struct TopShape {
+  double body_radius = 0.0;   // r_b = sqrt(2 I_f / m)
+  double rim_height = 0.0;    // t = max(r_b / 4, 2 R): a disc that still reads as one beside the tip sphere
+  double stem_radius = 0.0;   // r_s = max(0.12 r_b, 0.75 R), at most r_b / 2
+  double stem_bottom = 0.0;   // z where the stem leaves the body (the top of the cap, = t)
+  double stem_top = 0.0;      // t + max(f, r_b / 2)
+  // (r, z) from the axis at the tip-sphere centre (z = -f) round the outside to the axis under the stem:
+  // counter-clockwise in the (r, z) half-plane, so revolve() turns it into outward-facing triangles.
+  std::vector<Eigen::Vector2d> profile;
+};
+
+TopShape top_shape(const top_sim::Top& top);
+
+// Triangles (three points each, counter-clockwise seen from outside) of `profile` turned about z through `sweep`
+// radians from angle `start` in `segments` steps. A full turn (sweep >= 2 pi) closes exactly at the seam; points
+// of the profile on the axis (r = 0) give fans without degenerate triangles.
+std::vector<Eigen::Vector3d> revolve(const std::vector<Eigen::Vector2d>& profile, int segments, double start,
+                                     double sweep);
+
+// The profile's points off the axis, pushed out by `distance` along the profile's outward vertex normals:
+// a band turned from it lies just above the body's surface (a painted stripe without depth fighting).
+std::vector<Eigen::Vector2d> raised_profile(const std::vector<Eigen::Vector2d>& profile, double distance);
+
+}  // namespace top_sim_ros
