@@ -119,12 +119,13 @@ def test_state_of_b_streams_across_the_veth_at_the_node_rate(graph):
     assert len(got) > 10, 'only %d TopState from group_b in %g s' % (len(got), window)
     measured = (len(got) - 1) / (got[-1][0] - got[0][0])
     times = [m.sim_time for _, m in got]
+    payload = sum(serialized_size(m) for _, m in got)
     print('\n[netns] group_b TopState received in A: %d in %.2f s = %.1f Hz (node publishes at %g Hz); '
-          '%d bytes in on %s' % (len(got), got[-1][0] - got[0][0], measured, rate, rx1 - rx0, VETH_A))
+          '%d bytes in on %s, %d of them TopState payload' % (len(got), got[-1][0] - got[0][0], measured, rate,
+                                                            rx1 - rx0, VETH_A, payload))
     assert measured >= 0.9 * rate, 'TopState at %.1f Hz across the veth, below 90 %% of %g Hz' % (measured, rate)
     assert all(b > a for a, b in zip(times, times[1:])), 'sim_time not strictly increasing'
     # The messages crossed the veth: at least their payload came in on it (tf and TCP headers come on top).
-    payload = sum(serialized_size(m) for _, m in got)
     assert rx1 - rx0 >= payload, '%d bytes in on %s, less than the %d bytes of TopState received' % (
         rx1 - rx0, VETH_A, payload)
     assert got[-1][1]._connection_header['callerid'] == NODE['b']
