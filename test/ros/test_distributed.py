@@ -60,16 +60,21 @@ class Listener:
             return self.cond.wait_for(predicate, timeout)
 
     def received(self, group, since):
-        """(receive time, TopState) of group received at or after `since` (monotonic)."""
+        """(receive time, TopState) of group received at or after `since` (monotonic), oldest first."""
         with self.cond:
-            return [(t, m) for t, m in self.states[group] if t >= since]
+            recent = []
+            for t, m in reversed(self.states[group]):   # from the newest: the deque holds up to KEPT
+                if t < since:
+                    break
+                recent.append((t, m))
+        return recent[::-1]
 
     def first_after(self, group, since, predicate, timeout):
         """The first TopState of group received after `since` that satisfies predicate, or None after timeout."""
         found = []
 
         def match():
-            found[:] = [(t, m) for t, m in self.states[group] if t >= since and predicate(m)][:1]
+            found[:] = [(t, m) for t, m in self.received(group, since) if predicate(m)][:1]
             return bool(found)
         return found[0] if self.wait(match, timeout) else None
 
