@@ -70,6 +70,12 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/record.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.
+  # Its own timeout: the script stops and removes what it started on TERM.
+  set(_netns_result ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/netns-distributed.xml)
+  catkin_run_tests_target(netns distributed netns-distributed.xml
+    COMMAND "timeout -k 15 58 bash ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/distributed_netns.sh ${_netns_result} ${CATKIN_DEVEL_PREFIX}/.."
+    DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   if(TARGET top_sim_lcm)
     add_rostest_gtest(top_sim_lcm_test test/ros/lcm.test test/ros/test_lcm.cpp)
     target_link_libraries(top_sim_lcm_test top_sim_lcm ${catkin_LIBRARIES})
