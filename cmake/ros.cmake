@@ -62,7 +62,9 @@ if(CATKIN_ENABLE_TESTING)
   add_dependencies(top_sim_pacing_test top_sim_node ${PROJECT_NAME}_generate_messages_cpp)
   add_rostest(test/ros/pacing_slow.test DEPENDENCIES top_sim_pacing_test)
   add_rostest(test/ros/phi.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
-  add_rostest(test/ros/record.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # The recorded bag through top_sim_bag (cmake/ros_tools.cmake) against top_sim_run, and fitted by top_sim_fit.
+  add_rostest(test/ros/record.test DEPENDENCIES top_sim_node top_sim_bag top_sim_run top_sim_fit
+              ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   if(TARGET top_sim_lcm)
     add_rostest_gtest(top_sim_lcm_test test/ros/lcm.test test/ros/test_lcm.cpp)
