@@ -54,11 +54,11 @@ struct Arguments {
   double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
 };
 
-double number(const std::string& flag, const char* text) {
+double number(const std::string& flag, const char* value) {
   char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(v))
-    throw BadArgument{flag + " = '" + text + "': must be a finite number of seconds"};
+  const double v = std::strtod(value, &end);
+  if (end == value || *end != '\0' || !std::isfinite(v))
+    throw BadArgument{flag + " = '" + value + "': must be a finite number of seconds"};
   return v;
 }
 
