@@ -67,7 +67,9 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/pacing_slow.test DEPENDENCIES top_sim_pacing_test)
   add_rostest(test/ros/phi.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/geometric_phase.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
-  add_rostest(test/ros/record.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # The recorded bag through top_sim_bag (cmake/ros_tools.cmake) against top_sim_run, and fitted by top_sim_fit.
+  add_rostest(test/ros/record.test DEPENDENCIES top_sim_node top_sim_bag top_sim_run top_sim_fit
+              ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.

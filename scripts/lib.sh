@@ -15,9 +15,9 @@ export ROS_HOSTNAME=${ROS_HOSTNAME:-localhost}
 TOP_SIM_PACKAGES=(
   ros-core-dev catkin libtf2-ros-dev libtf2-eigen-dev libtf2-geometry-msgs-dev librostest-dev python3-rostest
   ros-message-generation libstd-srvs-dev libgeometry-msgs-dev libvisualization-msgs-dev libnav-msgs-dev
-  python3-rosbag rviz libeigen3-dev libboost-dev libyaml-cpp-dev liblcm-dev liblcm-bin libglib2.0-dev
-  libgtest-dev google-mock libbenchmark-dev python3-geometry-msgs python3-tf2-msgs python3-visualization-msgs
-  python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
+  python3-rosbag librosbag-storage-dev rviz libeigen3-dev libboost-dev libyaml-cpp-dev liblcm-dev liblcm-bin
+  libglib2.0-dev libgtest-dev google-mock libbenchmark-dev python3-geometry-msgs python3-tf2-msgs
+  python3-visualization-msgs python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
   pybind11-dev python3-dev python3-numpy python3-pytest
 )

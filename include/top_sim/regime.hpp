@@ -12,6 +12,7 @@ namespace top_sim {
 
 // The values are the regime codes of the messages (TopState.msg, top_state_t.lcm), whose adapters assert them.
 enum class Regime { nutating = 0, precessing = 1, sleeping = 2, sliding = 3, contact_fault = 4 };
+constexpr int kRegimeCount = 5;  // the indexes of per-regime arrays (the summary's regime_seconds)
 
 constexpr std::uint8_t code(Regime r) { return static_cast<std::uint8_t>(r); }
 const char* to_string(Regime r);

@@ -12,6 +12,14 @@ struct BadArgument {
   std::string message;
 };
 
+// The tool's one positional argument (`what`: "scene file", "bag") into `slot`; throws for an unknown option or a
+// second one.
+inline void positional(const std::string& a, std::string& slot, const std::string& what) {
+  if (!a.empty() && a[0] == '-') throw BadArgument{"unknown option '" + a + "'"};
+  if (!slot.empty()) throw BadArgument{"more than one " + what + " ('" + slot + "', '" + a + "')"};
+  slot = a;
+}
+
 // Runs parse(argc, argv, args), which returns false when it was asked for help. The exit status when the tool is
 // done (0 after the usage, 2 after the message and the usage of a bad argument), or nothing to go on.
 template <class Arguments, class Parse>

@@ -1,8 +1,11 @@
 #include "run_output.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <ctime>
+#include <fstream>
 #include <iomanip>
+#include <iostream>
 #include <sstream>
 #include <utility>
 
@@ -34,6 +37,52 @@ std::string quoted(const std::string& text) {
   }
   return s + "\"";
 }
+
+// One JSON object's members in order. A member its source cannot give is null, and "unavailable" (the last
+// member, present only then) maps it to the reason.
+class JsonObject {
+ public:
+  explicit JsonObject(std::string indent = "  ") : indent_(std::move(indent)) {}
+  JsonObject& add(const std::string& key, const std::string& json) {
+    members_.emplace_back(key, json);
+    return *this;
+  }
+  JsonObject& missing(const std::string& key, const std::string& why) {
+    reasons_.emplace_back(key, quoted(why));
+    return add(key, "null");
+  }
+  std::string str() const {
+    std::vector<std::pair<std::string, std::string>> all = members_;
+    if (!reasons_.empty()) all.emplace_back("unavailable", JsonObject(indent_ + "  ").add_all(reasons_).str());
+    std::string out = "{\n";
+    for (std::size_t i = 0; i < all.size(); ++i)
+      out += indent_ + top_sim::quoted(all[i].first) + ": " + all[i].second + (i + 1 < all.size() ? ",\n" : "\n");
+    return out + indent_.substr(2) + "}";
+  }
+
+ private:
+  JsonObject& add_all(const std::vector<std::pair<std::string, std::string>>& members) {
+    members_.insert(members_.end(), members.begin(), members.end());
+    return *this;
+  }
+  std::string indent_;
+  std::vector<std::pair<std::string, std::string>> members_, reasons_;
+};
+
+std::string optional_number(const std::optional<double>& v) { return v ? num(*v) : "null"; }
+
+// {"name": value, ...} over an enumeration's names (Regime, ContactMode).
+template <class Enum, std::size_t N>
+std::string per_name(const std::array<double, N>& seconds) {
+  std::string s = "{";
+  for (std::size_t i = 0; i < N; ++i)
+    s += (i ? ", " : "") + quoted(to_string(static_cast<Enum>(i))) + ": " + num(seconds[i]);
+  return s + "}";
+}
+
+// A fault: the core's kind, or (from a TopState, which carries only the text) its message.
+bool faulted(const Snapshot& s) { return s.fault != ContactFault::none || !s.fault_message.empty(); }
+
 }  // namespace
 
 double thread_cpu_seconds() {
@@ -55,14 +104,73 @@ void advance(Simulator& sim, double t, const RunOptions& opt) {
 
 }  // namespace
 
+double mark_time(double t0, double t_end) { return t0 + 0.8 * (t_end - t0); }
+
+std::optional<double> travel_since(const Eigen::Vector2d& mark, const Snapshot& last) {
+  const Eigen::Vector2d d = last.contact_point.head<2>() - mark;
+  if (faulted(last) || !(d.norm() > 0.0)) return std::nullopt;
+  return travel_angle(d.x(), d.y());
+}
+
+void SummaryAccumulator::add(const Snapshot& s) {
+  const Snapshot& prev = sum_.last;
+  if (sum_.samples == 0) {
+    sum_.t_first = s.t;
+  } else {
+    const double dt = s.t - prev.t;
+    sum_.regime_seconds[code(prev.regime)] += dt;
+    sum_.mode_seconds[code(prev.contact_mode)] += dt;
+    if (s.contact_mode != prev.contact_mode) {
+      ModeSwitch m;
+      m.t = s.t;
+      m.from = prev.contact_mode;
+      m.to = s.contact_mode;
+      if (sum_.mode_changes.size() < Simulator::kMaxPendingSwitches) sum_.mode_changes.push_back(m);
+      ++sum_.mode_change_count;
+    }
+  }
+  if (!mark_ && s.t >= t_mark_) {  // the contact point at t_mark, linear between the samples around it
+    const bool between = sum_.samples > 0 && prev.t < t_mark_;
+    const double w = between ? (t_mark_ - prev.t) / (s.t - prev.t) : 1.0;
+    const Eigen::Vector2d from = between ? Eigen::Vector2d(prev.contact_point.head<2>()) : Eigen::Vector2d::Zero();
+    mark_ = (1.0 - w) * from + w * s.contact_point.head<2>();
+  }
+  sum_.max_energy_residual = std::max(sum_.max_energy_residual, s.energy_balance_residual);
+  sum_.t_last = s.t;
+  sum_.last = s;
+  ++sum_.samples;
+}
+
+SampledSummary SummaryAccumulator::result() const {
+  SampledSummary r = sum_;
+  if (mark_) r.phi_measured = travel_since(*mark_, sum_.last);
+  return r;
+}
+
+void set_phi_star(const StationaryState& st, std::optional<double>& phi_star, std::string& note) {
+  if (st.exists && st.phi_defined)
+    phi_star = st.phi;
+  else
+    note = st.reason;
+}
+
+namespace {
+
+// The samples' summary, with the run's end when the last sample is before it (not passed to on_sample).
+SampledSummary with_end(SummaryAccumulator& samples, const Simulator& sim) {
+  if (sim.time() > samples.t_last()) samples.add(sim.snapshot());
+  return samples.result();
+}
+
+}  // namespace
+
 RunResult run(Simulator& sim, const RunOptions& opt) {
   RunResult r;
   const double t0 = sim.time();
   const double t_end = t0 + opt.duration;
-  const double t_mark = t0 + 0.8 * opt.duration;
+  const double t_mark = mark_time(t0, t_end);
   const double cpu0 = thread_cpu_seconds();
   std::optional<Eigen::Vector2d> mark;
-
   const std::array<double, kContactModeCount> seconds0 = sim.mode_seconds();
   const std::uint64_t switches0 = sim.mode_switch_count();
   sim.take_mode_switches();  // only this run's switches
@@ -74,12 +182,19 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
     advance(sim, t, opt);
     collect();
   };
+  SummaryAccumulator sampled(t_mark);
+  auto take_sample = [&]() {
+    const Snapshot s = sim.snapshot();
+    sampled.add(s);
+    if (opt.on_sample) opt.on_sample(s);
+  };
   auto sample = [&](double t) {
     advance_to(t);
-    if (opt.on_sample) opt.on_sample(sim.snapshot());
+    take_sample();
   };
-  if (opt.sample_rate > 0.0 && opt.on_sample) {
-    opt.on_sample(sim.snapshot());
+  const bool sampling = opt.sample_rate > 0.0;
+  if (sampling) {
+    take_sample();
     const double dt = 1.0 / opt.sample_rate;
     for (long k = 1;; ++k) {
       const double t = t0 + k * dt;
@@ -97,6 +212,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   }
   advance_to(t_end);
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
+  if (sampling) r.sampled = with_end(sampled, sim);
   r.mode_switch_count = sim.mode_switch_count() - switches0;
   const std::array<double, kContactModeCount> seconds1 = sim.mode_seconds();
   for (int i = 0; i < kContactModeCount; ++i) r.mode_seconds[i] = seconds1[i] - seconds0[i];
@@ -104,15 +220,8 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   r.final = sim.snapshot();
   r.stats = sim.stats();
   r.max_energy_residual = sim.max_energy_residual();
-  if (mark && sim.fault() == ContactFault::none) {
-    const Eigen::Vector2d d = position(sim.state()) - *mark;
-    if (d.norm() > 0.0) r.phi_measured = travel_angle(d.x(), d.y());
-  }
-  const StationaryState st = sim.stationary();
-  if (st.exists && st.phi_defined)
-    r.phi_star = st.phi;
-  else
-    r.stationary_note = st.reason;
+  if (mark) r.phi_measured = travel_since(*mark, r.final);
+  set_phi_star(sim.stationary(), r.phi_star, r.stationary_note);
   return r;
 }
 
@@ -132,53 +241,137 @@ void write_csv_row(std::ostream& os, const Snapshot& s) {
   os << '\n';
 }
 
-std::string summary_json(const Scene& scene, const RunResult& r) {
-  const Snapshot& f = r.final;
-  std::ostringstream os;
-  os << "{\n"
-     << "  \"scene\": " << quoted(scene.source) << ",\n"
-     << "  \"method\": " << quoted(to_string(scene.integrator.method)) << ",\n"
-     << "  \"model\": " << quoted(to_string(scene.model.kind)) << ",\n"
-     << "  \"normal_force\": " << quoted(to_string(scene.model.normal_force)) << ",\n"
-     << "  \"sim_seconds\": " << num(r.sim_seconds) << ",\n"
-     << "  \"cpu_seconds\": " << num(r.cpu_seconds) << ",\n"
-     << "  \"real_time_factor\": " << num(r.cpu_seconds > 0 ? r.sim_seconds / r.cpu_seconds : NAN) << ",\n"
-     << "  \"steps\": " << r.stats.steps << ",\n"
-     << "  \"rhs_evaluations\": " << r.stats.rhs_evaluations << ",\n"
-     << "  \"regime\": " << quoted(to_string(f.regime)) << ",\n"
-     << "  \"phi_measured\": " << (r.phi_measured ? num(*r.phi_measured) : "null") << ",\n"
-     << "  \"phi_star\": " << (r.phi_star ? num(*r.phi_star) : "null") << ",\n"
-     << "  \"stationary_note\": " << (r.stationary_note.empty() ? "null" : quoted(r.stationary_note)) << ",\n"
-     << "  \"final\": {\n"
-     << "    \"t\": " << num(f.t) << ",\n"
-     << "    \"alpha\": " << num(f.alpha) << ",\n"
-     << "    \"position\": " << vec({f.contact_point.x(), f.contact_point.y()}) << ",\n"
-     << "    \"velocity\": " << vec({f.tip_velocity.x(), f.tip_velocity.y()}) << ",\n"
-     << "    \"f_hat\": " << vec({f.figure_axis.x(), f.figure_axis.y(), f.figure_axis.z()}) << ",\n"
-     << "    \"omega\": " << vec({f.angular_velocity.x(), f.angular_velocity.y(), f.angular_velocity.z()}) << ",\n"
-     << "    \"spin\": " << num(f.spin) << ",\n"
-     << "    \"rotor_spin\": " << (f.has_rotor ? num(f.rotor_spin) : "null") << ",\n"
-     << "    \"slip\": " << num(f.slip) << ",\n"
-     << "    \"phi\": " << num(f.phi) << "\n"
-     << "  },\n"
-     << "  \"energy_balance_residual\": " << num(r.max_energy_residual) << ",\n"
-     << "  \"contact_fault\": " << (f.fault == ContactFault::none ? "null" : quoted(f.fault_message)) << ",\n"
-     << "  \"contact_fault_kind\": " << (f.fault == ContactFault::none ? "null" : quoted(to_string(f.fault))) << ",\n"
-     << "  \"contact_mode\": " << (f.fault == ContactFault::none ? quoted(to_string(f.contact_mode)) : "null") << ",\n"
-     << "  \"mode_seconds\": {";
-  for (int i = 0; i < kContactModeCount; ++i)
-    os << (i ? ", " : "") << quoted(to_string(static_cast<ContactMode>(i))) << ": " << num(r.mode_seconds[i]);
-  os << "},\n"
-     << "  \"mode_switch_count\": " << r.mode_switch_count << ",\n"
-     << "  \"mode_switches\": [";
-  for (std::size_t i = 0; i < r.mode_switches.size(); ++i) {
-    const ModeSwitch& m = r.mode_switches[i];
-    os << (i ? ",\n    " : "\n    ") << "{\"t\": " << num(m.t) << ", \"kind\": " << quoted(to_string(m.kind))
-       << ", \"from\": " << quoted(to_string(m.from)) << ", \"to\": " << quoted(to_string(m.to))
-       << ", \"energy_change\": " << num(m.energy_change) << "}";
+bool write_text_file(const std::string& tool, const std::string& flag, const std::string& path,
+                     const std::string& text) {
+  const std::string what = tool + ": " + flag + " = '" + path + "': ";
+  if (path == "-") {
+    std::cout << text << std::flush;
+    if (!std::cout) std::cerr << what << "writing to standard output failed\n";
+    return static_cast<bool>(std::cout);
   }
-  os << (r.mode_switches.empty() ? "]\n" : "\n  ]\n") << "}\n";
-  return os.str();
+  if (path.empty()) return true;
+  std::ofstream out(path);
+  if (!out) {
+    std::cerr << what << "cannot open for writing\n";
+    return false;
+  }
+  out << text << std::flush;
+  if (!out) std::cerr << what << "writing failed (disk full?)\n";
+  return static_cast<bool>(out);
+}
+
+namespace {
+
+JsonObject final_json(const Snapshot& f) {
+  JsonObject o("    ");
+  o.add("t", num(f.t))
+      .add("alpha", num(f.alpha))
+      .add("position", vec({f.contact_point.x(), f.contact_point.y()}))
+      .add("velocity", vec({f.tip_velocity.x(), f.tip_velocity.y()}))
+      .add("f_hat", vec({f.figure_axis.x(), f.figure_axis.y(), f.figure_axis.z()}))
+      .add("omega", vec({f.angular_velocity.x(), f.angular_velocity.y(), f.angular_velocity.z()}))
+      .add("spin", num(f.spin))
+      .add("rotor_spin", f.has_rotor ? num(f.rotor_spin) : "null")
+      .add("slip", num(f.slip))
+      .add("phi", num(f.phi));
+  return o;
+}
+
+// The scene's names of the method and the models.
+void add_scene(JsonObject& o, const Scene& scene) {
+  o.add("scene", quoted(scene.source))
+      .add("method", quoted(to_string(scene.integrator.method)))
+      .add("model", quoted(to_string(scene.model.kind)))
+      .add("normal_force", quoted(to_string(scene.model.normal_force)));
+}
+
+// The members both summaries have, from "regime" to "contact_mode", in that order.
+struct Outcome {
+  const Snapshot& final;
+  std::optional<std::array<double, kRegimeCount>> regime_seconds;
+  std::string no_regime_seconds;  // why regime_seconds is absent
+  std::optional<double> phi_measured, phi_star;
+  std::string stationary_note, phi_star_source;  // "" = none (phi_star_source: a recording's only)
+  double max_energy_residual;
+};
+
+void add_outcome(JsonObject& o, const Outcome& c) {
+  const Snapshot& f = c.final;
+  o.add("regime", quoted(to_string(f.regime)));
+  if (c.regime_seconds)
+    o.add("regime_seconds", per_name<Regime>(*c.regime_seconds));
+  else
+    o.missing("regime_seconds", c.no_regime_seconds);
+  o.add("phi_measured", optional_number(c.phi_measured)).add("phi_star", optional_number(c.phi_star));
+  if (!c.phi_star_source.empty()) o.add("phi_star_source", quoted(c.phi_star_source));
+  o.add("stationary_note", c.stationary_note.empty() ? "null" : quoted(c.stationary_note))
+      .add("final", final_json(f).str())
+      .add("energy_balance_residual", num(c.max_energy_residual))
+      .add("contact_fault", faulted(f) ? quoted(f.fault_message) : "null");
+  if (f.fault != ContactFault::none || !faulted(f))
+    o.add("contact_fault_kind", f.fault == ContactFault::none ? "null" : quoted(to_string(f.fault)));
+  else
+    o.missing("contact_fault_kind", "TopState carries the fault's text (contact_fault), not its kind");
+  o.add("contact_mode", faulted(f) ? "null" : quoted(to_string(f.contact_mode)));
+}
+
+// [{"t", "kind", "from", "to", "energy_change"}, ...]; kind and energy_change only for located switches.
+std::string switches_json(const std::vector<ModeSwitch>& list, bool located) {
+  std::string s = "[";
+  for (std::size_t i = 0; i < list.size(); ++i) {
+    const ModeSwitch& m = list[i];
+    s += std::string(i ? ",\n    " : "\n    ") + "{\"t\": " + num(m.t);
+    if (located) s += ", \"kind\": " + quoted(to_string(m.kind));
+    s += ", \"from\": " + quoted(to_string(m.from)) + ", \"to\": " + quoted(to_string(m.to));
+    if (located) s += ", \"energy_change\": " + num(m.energy_change);
+    s += "}";
+  }
+  return s + (list.empty() ? "]" : "\n  ]");
+}
+
+}  // namespace
+
+std::string summary_json(const Scene& scene, const RunResult& r) {
+  JsonObject o;
+  add_scene(o, scene);
+  o.add("sim_seconds", num(r.sim_seconds))
+      .add("cpu_seconds", num(r.cpu_seconds))
+      .add("real_time_factor", num(r.cpu_seconds > 0 ? r.sim_seconds / r.cpu_seconds : NAN))
+      .add("steps", std::to_string(r.stats.steps))
+      .add("rhs_evaluations", std::to_string(r.stats.rhs_evaluations))
+      .add("samples", std::to_string(r.sampled.samples));
+  Outcome c{r.final, std::nullopt, "the regime is classified at samples; this run took none (RunOptions.sample_rate)",
+            r.phi_measured, r.phi_star, r.stationary_note, "", r.max_energy_residual};
+  if (r.sampled.samples > 1) c.regime_seconds = r.sampled.regime_seconds;
+  add_outcome(o, c);
+  o.add("mode_seconds", per_name<ContactMode>(r.mode_seconds))
+      .add("mode_switch_count", std::to_string(r.mode_switch_count))
+      .add("mode_switches", switches_json(r.mode_switches, true));
+  return o.str() + "\n";
+}
+
+std::string summary_json(const RecordedSource& src, const SampledSummary& s) {
+  const char* not_recorded = "not in TopState: the node's CPU time and integrator counts are not recorded";
+  JsonObject o;
+  o.add("bag", quoted(src.bag)).add("topic", quoted(src.topic)).add("top", quoted(src.top));
+  if (src.scene) {
+    add_scene(o, *src.scene);
+  } else {
+    o.add("scene", "null");
+    for (const char* key : {"method", "model", "normal_force"})
+      o.missing(key, "a bag holds no scene (give --scene FILE)");
+  }
+  o.add("t_first", num(s.t_first)).add("t_last", num(s.t_last)).add("sim_seconds", num(s.t_last - s.t_first));
+  for (const char* key : {"cpu_seconds", "real_time_factor", "steps", "rhs_evaluations"}) o.missing(key, not_recorded);
+  o.add("samples", std::to_string(s.samples)).add("skipped", std::to_string(src.skipped));
+  add_outcome(o, {s.last, s.regime_seconds, "", s.phi_measured, src.phi_star, src.stationary_note, src.phi_star_source,
+                  s.max_energy_residual});
+  o.add("mode_seconds", per_name<ContactMode>(s.mode_seconds))
+      .missing("mode_switch_count", "a bag holds samples: switches between two samples are not seen (mode_changes)")
+      .missing("mode_switches", "a bag holds samples: switches between two samples are not seen (mode_changes)")
+      .add("mode_change_count", std::to_string(s.mode_change_count))
+      .add("mode_changes", switches_json(s.mode_changes, false));
+  return o.str() + "\n";
 }
 
 }  // namespace top_sim

@@ -10,12 +10,53 @@
 #include <cstdint>
 
 #include "top_sim/simulator.hpp"
+#include "top_sim/stationary.hpp"
 
 namespace top_sim {
 
+// What a stream of Snapshots in time order says: top_sim_run's samples, or a bag's TopStates (top_sim_bag).
+// Sampled: each interval between two samples counts for the earlier sample's regime and contact mode, and a mode
+// change is seen at the first sample in the new mode (switches and returns between two samples are not seen).
+struct SampledSummary {
+  std::uint64_t samples = 0;
+  double t_first = 0.0, t_last = 0.0;
+  std::array<double, kRegimeCount> regime_seconds{};     // index: Regime
+  std::array<double, kContactModeCount> mode_seconds{};  // index: ContactMode
+  std::vector<ModeSwitch> mode_changes;  // kind and energy_change unknown (left at their defaults)
+  std::uint64_t mode_change_count = 0;   // all of them (the list stops at Simulator::kMaxPendingSwitches)
+  double max_energy_residual = 0.0;      // over the samples
+  std::optional<double> phi_measured;    // from the contact point at the mark (interpolated) to the last sample
+  Snapshot last;
+};
+
+// The start of the last 20 % of [t0, t_end], where phi_measured starts.
+double mark_time(double t0, double t_end);
+
+// phi_measured: direction of travel of the contact point from `mark` to `last`; none after a contact fault
+// (TopState gives only its text: a fault message counts) or without displacement.
+std::optional<double> travel_since(const Eigen::Vector2d& mark, const Snapshot& last);
+
+class SummaryAccumulator {
+ public:
+  // t_mark: mark_time() of the stream's first and last sample times.
+  explicit SummaryAccumulator(double t_mark) : t_mark_(t_mark) {}
+  // Samples must come in increasing time.
+  void add(const Snapshot& s);
+  SampledSummary result() const;
+  double t_last() const { return sum_.t_last; }
+
+ private:
+  double t_mark_;
+  std::optional<Eigen::Vector2d> mark_;
+  SampledSummary sum_;
+};
+
+// phi_star from the stationary solver's answer: phi*, or empty and why.
+void set_phi_star(const StationaryState& st, std::optional<double>& phi_star, std::string& note);
+
 struct RunOptions {
   double duration = 10.0;     // simulated seconds
-  double sample_rate = 0.0;   // samples per simulated second for on_sample (0 = none)
+  double sample_rate = 0.0;   // samples per simulated second (0 = none): RunResult.sampled and on_sample
   std::function<void(const Snapshot&)> on_sample;
   // Called about every progress_interval seconds of wall time during long advances (none when empty).
   std::function<void(double t)> on_progress;
@@ -34,6 +75,7 @@ struct RunResult {
   std::vector<ModeSwitch> mode_switches;  // every contact-mode switch of the run, in time order
   std::uint64_t mode_switch_count = 0;    // all of them (the list stops at Simulator::kMaxPendingSwitches)
   std::array<double, kContactModeCount> mode_seconds{};  // simulated seconds in each mode (this run)
+  SampledSummary sampled;  // of the samples at RunOptions.sample_rate (with the initial state); none without
 };
 
 // Advances the simulator from its current time by options.duration.
@@ -47,5 +89,22 @@ void write_csv_row(std::ostream& os, const Snapshot& s);
 
 // The JSON summary of docs/interfaces.md.
 std::string summary_json(const Scene& scene, const RunResult& r);
+
+// Writes `text` to `path` ("-" = standard output, "" = nothing); false after "TOOL: FLAG = 'PATH': ..." on stderr.
+bool write_text_file(const std::string& tool, const std::string& flag, const std::string& path,
+                     const std::string& text);
+
+// Where a recorded stream came from and what only the recording's reader knows.
+struct RecordedSource {
+  std::string bag, topic, top;
+  const Scene* scene = nullptr;  // --scene: its method, model, normal force; phi_star from its stationary solver
+  std::optional<double> phi_star;
+  std::string phi_star_source, stationary_note;
+  std::uint64_t skipped = 0;  // messages whose sim_time did not advance
+};
+
+// The JSON summary of a recorded stream (top_sim_bag): top_sim_run's keys where a recording can give them; the
+// others are null and "unavailable" says why.
+std::string summary_json(const RecordedSource& source, const SampledSummary& s);
 
 }  // namespace top_sim

@@ -27,7 +27,7 @@ const char* kUsage =
     "                   [--lcm URL [--lcm-channel NAME]] [--quiet] [--progress]\n"
     "  --duration S    simulated seconds (default: the scene's duration)\n"
     "  --csv FILE      write the state at --rate samples per simulated second\n"
-    "  --rate HZ       CSV sample rate (default 100)\n"
+    "  --rate HZ       sample rate of the CSV and of the summary's regime_seconds (default 100)\n"
     "  --summary FILE  write the JSON summary (- for standard output)\n"
     "  --lcm URL       stream top_sim.top_state_t in real time at --rate Hz over LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
     "  --lcm-channel C LCM channel (default TOP_STATE)\n"
@@ -82,12 +82,8 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
     } else if (a == "--lcm-channel") {
       args.lcm_channel = value();
       if (args.lcm_channel.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
-    } else if (!a.empty() && a[0] == '-') {
-      throw BadArgument{"unknown option '" + a + "'"};
-    } else if (args.scene_path.empty()) {
-      args.scene_path = a;
     } else {
-      throw BadArgument{"more than one scene file ('" + args.scene_path + "', '" + a + "')"};
+      top_sim_cli::positional(a, args.scene_path, "scene file");
     }
   }
   if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
@@ -185,24 +181,6 @@ void print_result(const top_sim::Scene& scene, const top_sim::RunResult& r) {
   if (!r.stationary_note.empty()) std::cout << "  stationary state: " << r.stationary_note << "\n";
 }
 
-// The JSON summary to `path` ("-" = stdout, "" = none); false (after the message) when it could not be written.
-bool write_summary(const std::string& path, const std::string& json) {
-  if (path == "-") {
-    std::cout << json << std::flush;
-    if (!std::cout) std::cerr << "top_sim_run: --summary = '-': writing to standard output failed\n";
-    return static_cast<bool>(std::cout);
-  }
-  if (path.empty()) return true;
-  std::ofstream out(path);
-  if (!out) {
-    std::cerr << "top_sim_run: --summary = '" << path << "': cannot open for writing\n";
-    return false;
-  }
-  out << json << std::flush;
-  if (!out) std::cerr << "top_sim_run: --summary = '" << path << "': writing failed (disk full?)\n";
-  return static_cast<bool>(out);
-}
-
 // True when every CSV row reached the file; else says so.
 bool csv_written(const std::string& path, std::ofstream& csv) {
   if (!csv.is_open()) return true;
@@ -229,10 +207,8 @@ int main(int argc, char** argv) {
   RunOptions opt;
   opt.duration = duration;
   if (args.progress || (!args.quiet && isatty(STDERR_FILENO))) opt.on_progress = progress_printer(sim.time(), duration);
-  if (csv.is_open()) {
-    opt.sample_rate = args.rate;
-    opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
-  }
+  opt.sample_rate = args.rate;  // the summary's regime_seconds come from the samples too
+  if (csv.is_open()) opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
 #ifdef TOP_SIM_HAVE_LCM
   std::unique_ptr<top_sim_lcm::Publisher> lcm;
   if (!args.lcm_url.empty()) {
@@ -247,7 +223,8 @@ int main(int argc, char** argv) {
   const RunResult r = run(sim, opt);
   if (opt.on_progress && isatty(STDERR_FILENO)) std::cerr << "\n";
   // Output errors surface after the simulation: exit 1 (the result could not be delivered).
-  const bool written = csv_written(args.csv_path, csv) && write_summary(args.summary_path, summary_json(scene, r));
+  const bool written = csv_written(args.csv_path, csv) &&
+                       write_text_file("top_sim_run", "--summary", args.summary_path, summary_json(scene, r));
   if (args.summary_path != "-") print_result(scene, r);
   if (r.final.fault != ContactFault::none) {
     std::cerr << "top_sim_run: contact fault: " << r.final.fault_message << "\n";

@@ -116,12 +116,8 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
       args.sweep_alpha = parse_range(a, value(), admissible_alpha, "in (0, pi/2) [rad]");
     } else if (a == "--sweep-spin") {
       args.sweep_spin = parse_range(a, value(), admissible_spin, spin_range);
-    } else if (!a.empty() && a[0] == '-') {
-      throw BadArgument{"unknown option '" + a + "'"};
-    } else if (args.scene_path.empty()) {
-      args.scene_path = a;
     } else {
-      throw BadArgument{"more than one scene file ('" + args.scene_path + "', '" + a + "')"};
+      top_sim_cli::positional(a, args.scene_path, "scene file");
     }
   }
   if (args.scene_path.empty()) throw BadArgument{"no scene file given"};

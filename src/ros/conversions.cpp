@@ -5,7 +5,9 @@
 #include <sstream>
 
 #include "top_mesh.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
+#include "top_sim/trajectory.hpp"
 
 namespace top_sim_ros {
 
@@ -135,6 +137,13 @@ void add_body(const TopShape& shape, Colour colour, const std::string& frame, co
   out.markers.push_back(stem);
 }
 
+// "NAME = VALUE" of a non-finite number of `s`: the CSV column, else the fields outside the CSV.
+std::string non_finite_field(const top_sim::Snapshot& s) {
+  for (const top_sim::TrajectoryColumn& c : top_sim::trajectory_columns())
+    if (!std::isfinite(c.value(s))) return std::string(c.name) + " = " + top_sim::format_number(c.value(s));
+  return "one of pose.orientation, tip_center, friction_force, phi_star, dissipated_work";
+}
+
 }  // namespace
 
 // The message's constants are the core's codes (msg/TopState.msg keeps their values).
@@ -147,39 +156,88 @@ static_assert(top_sim::TopState::SLIPPING == top_sim::code(top_sim::ContactMode:
 static_assert(top_sim::TopState::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "TopState mode code");
 static_assert(top_sim::TopState::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "TopState mode code");
 
+namespace {
+
+// The one list of the Snapshot fields TopState carries and their message fields: to_msg and to_snapshot both walk
+// it, so the two maps cannot drift apart. copy(snapshot field, message field) copies one way or the other.
+template <class Snap, class Msg, class Copy>
+void carried_fields(Snap& s, Msg& m, Copy copy) {
+  copy(s.t, m.sim_time);
+  copy(s.alpha, m.alpha);
+  copy(s.com, m.pose.position);
+  copy(s.orientation, m.pose.orientation);
+  copy(s.com_velocity, m.twist.linear);
+  copy(s.angular_velocity, m.twist.angular);
+  copy(s.tip_center, m.tip_center);
+  copy(s.tip_velocity, m.tip_velocity);
+  copy(s.contact_point, m.contact_point);
+  copy(s.figure_axis, m.figure_axis);
+  copy(s.spin, m.spin);
+  copy(s.has_rotor, m.has_rotor);
+  copy(s.rotor_spin, m.rotor_spin);
+  copy(s.slip, m.slip);
+  copy(s.mu, m.mu);
+  copy(s.normal_force, m.normal_force);
+  copy(s.friction_force, m.friction_force);
+  copy(s.phi, m.phi);
+  copy(s.has_stationary_state, m.has_stationary_state);
+  copy(s.phi_star, m.phi_star);
+  copy(s.gap, m.gap);
+  copy(s.energy, m.energy);
+  copy(s.dissipated_work, m.dissipated_work);
+  copy(s.energy_balance_residual, m.energy_balance_residual);
+  copy(s.fault_message, m.fault);
+}
+
+struct IntoMsg {  // snapshot field -> message field
+  template <class A, class B>
+  void operator()(const A& a, B& b) const { b = a; }
+  void operator()(const Eigen::Vector3d& a, geometry_msgs::Point& b) const { b = point(a); }
+  void operator()(const Eigen::Vector3d& a, geometry_msgs::Vector3& b) const { b = vector(a); }
+  void operator()(const Eigen::Quaterniond& a, geometry_msgs::Quaternion& b) const { b = quaternion(a); }
+};
+
+struct FromMsg {  // message field -> snapshot field
+  template <class A, class B>
+  void operator()(A& a, const B& b) const { a = b; }
+  void operator()(Eigen::Vector3d& a, const geometry_msgs::Point& b) const { a = {b.x, b.y, b.z}; }
+  void operator()(Eigen::Vector3d& a, const geometry_msgs::Vector3& b) const { a = {b.x, b.y, b.z}; }
+  void operator()(Eigen::Quaterniond& a, const geometry_msgs::Quaternion& b) const { a = {b.w, b.x, b.y, b.z}; }
+};
+
+}  // namespace
+
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out) {
   out.header.stamp = stamp;
   out.header.frame_id = plane_frame;
-  out.sim_time = s.t;
-  out.alpha = s.alpha;
-  out.pose.position = point(s.com);
-  out.pose.orientation = quaternion(s.orientation);
-  out.twist.linear = vector(s.com_velocity);
-  out.twist.angular = vector(s.angular_velocity);
-  out.tip_center = point(s.tip_center);
-  out.tip_velocity = vector(s.tip_velocity);
-  out.contact_point = point(s.contact_point);
-  out.figure_axis = vector(s.figure_axis);
-  out.spin = s.spin;
-  out.has_rotor = s.has_rotor;
-  out.rotor_spin = s.rotor_spin;
-  out.slip = s.slip;
-  out.mu = s.mu;
-  out.normal_force = s.normal_force;
-  out.friction_force = vector(s.friction_force);
-  out.phi = s.phi;
-  out.has_stationary_state = s.has_stationary_state;
-  out.phi_star = s.phi_star;
+  carried_fields(s, out, IntoMsg());
   out.regime = top_sim::code(s.regime);
   out.regime_name = top_sim::to_string(s.regime);
   out.contact_mode = top_sim::code(s.contact_mode);
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
-  out.gap = s.gap;
-  out.energy = s.energy;
-  out.dissipated_work = s.dissipated_work;
-  out.energy_balance_residual = s.energy_balance_residual;
-  out.fault = s.fault_message;
+}
+
+top_sim::Snapshot to_snapshot(const top_sim::TopState& m, std::string& error) {
+  top_sim::Snapshot s;
+  error.clear();
+  const struct {
+    const char* name;
+    int code, count;
+  } codes[] = {{"regime", m.regime, top_sim::kRegimeCount},
+               {"contact_mode", m.contact_mode, top_sim::kContactModeCount}};
+  for (const auto& c : codes) {
+    if (c.code >= c.count) {
+      error = std::string(c.name) + " = " + std::to_string(c.code) + ": must be a code in 0.." +
+              std::to_string(c.count - 1);
+      return s;
+    }
+  }
+  carried_fields(s, m, FromMsg());
+  s.regime = static_cast<top_sim::Regime>(m.regime);
+  s.contact_mode = static_cast<top_sim::ContactMode>(m.contact_mode);
+  if (!top_sim::all_finite(s)) error = non_finite_field(s) + ": must be finite";
+  return s;
 }
 
 void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,

@@ -1,4 +1,4 @@
-// Snapshot -> ROS messages and TopCommand -> core Command: field-by-field maps, no physics here.
+// Snapshot -> ROS messages, TopState -> Snapshot and TopCommand -> core Command: field-by-field maps, no physics.
 #pragma once
 
 #include <geometry_msgs/TransformStamped.h>
@@ -22,6 +22,12 @@ struct Frames {
 
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out);
+
+// The inverse of to_msg (a recorded state back to the core's Snapshot, e.g. for top_sim_run's CSV). TopState
+// carries no spin_phase, com_acceleration, regime indicators or fault kind: those keep their defaults (fault stays
+// none; fault_message holds the text). "" or an error naming field, value and allowed range in `error` (a code
+// out of range, a non-finite number).
+top_sim::Snapshot to_snapshot(const top_sim::TopState& msg, std::string& error);
 
 // world -> plane (rotation alpha about x) and plane -> top (centre of mass, body axes).
 void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,

@@ -1,5 +1,5 @@
 // Unit tests of the ROS adapter's pure maps (no master needed): TopCommand -> Command,
-// Snapshot -> tf / TopState.
+// Snapshot -> tf / TopState -> Snapshot, the top's mesh.
 #include <gtest/gtest.h>
 
 #include <array>
@@ -15,6 +15,7 @@
 #include "top_mesh.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
+#include "top_sim/trajectory.hpp"
 
 using top_sim_ros::to_command;
 
@@ -341,6 +342,78 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   EXPECT_EQ(*c.restitution, 1.5);
   EXPECT_FALSE(c.static_friction);
   EXPECT_FALSE(c.inclination);
+}
+
+// A snapshot whose every field TopState carries has its own value (no two alike), so a swapped field shows.
+top_sim::Snapshot distinct_snapshot() {
+  top_sim::Snapshot s;
+  double v = 0.0;
+  auto next = [&v]() { return v += 0.1234567890123; };
+  auto vec = [&]() { return Eigen::Vector3d(next(), next(), next()); };
+  s.t = next(); s.alpha = next();
+  s.tip_center = vec(); s.com = vec();
+  s.orientation = Eigen::Quaterniond(next(), next(), next(), next());
+  s.com_velocity = vec(); s.tip_velocity = vec(); s.contact_point = vec(); s.figure_axis = vec();
+  s.angular_velocity = vec();
+  s.spin = next(); s.has_rotor = true; s.rotor_spin = next(); s.slip = next(); s.mu = next();
+  s.normal_force = next(); s.friction_force = vec(); s.phi = next();
+  s.has_stationary_state = true; s.phi_star = next();
+  s.regime = top_sim::Regime::precessing; s.contact_mode = top_sim::ContactMode::flight;
+  s.gap = next(); s.energy = next(); s.dissipated_work = next(); s.energy_balance_residual = next();
+  s.fault_message = "t = 1 s: fallen";
+  return s;
+}
+
+// Snapshot -> TopState -> Snapshot gives every carried field back bit for bit (top_sim_bag's CSV is the node's state).
+TEST(TopStateMsg, SnapshotRoundTripIsExact) {
+  const top_sim::Snapshot a = distinct_snapshot();
+  top_sim::TopState m;
+  top_sim_ros::to_msg(a, ros::Time(3.0), "plane", m);
+  std::string error;
+  const top_sim::Snapshot b = top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "");
+  for (const top_sim::TrajectoryColumn& c : top_sim::trajectory_columns())  // every CSV column, exactly
+    EXPECT_EQ(c.value(b), c.value(a)) << c.name;
+  EXPECT_EQ(b.tip_center, a.tip_center);
+  EXPECT_EQ(b.orientation.coeffs(), a.orientation.coeffs());
+  EXPECT_EQ(b.tip_velocity.z(), a.tip_velocity.z());
+  EXPECT_EQ(b.contact_point.z(), a.contact_point.z());
+  EXPECT_EQ(b.friction_force, a.friction_force);
+  EXPECT_EQ(b.has_rotor, a.has_rotor);
+  EXPECT_EQ(b.normal_force, a.normal_force);
+  EXPECT_EQ(b.has_stationary_state, a.has_stationary_state);
+  EXPECT_EQ(b.phi_star, a.phi_star);
+  EXPECT_EQ(b.dissipated_work, a.dissipated_work);
+  EXPECT_EQ(b.regime, a.regime);
+  EXPECT_EQ(b.contact_mode, a.contact_mode);
+  EXPECT_EQ(b.fault_message, a.fault_message);
+  EXPECT_EQ(b.fault, top_sim::ContactFault::none) << "TopState has no fault kind: none, with the text kept";
+  top_sim::TopState again;  // and back: the same message
+  top_sim_ros::to_msg(b, ros::Time(3.0), "plane", again);
+  EXPECT_TRUE(again == m);
+}
+
+TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
+  top_sim::TopState m;
+  m.regime = 5;
+  std::string error;
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "regime = 5: must be a code in 0..4");
+  m.regime = top_sim::TopState::SLEEPING;
+  m.contact_mode = 3;
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "contact_mode = 3: must be a code in 0..2");
+  m.contact_mode = top_sim::TopState::ROLLING;
+  m.pose.position.y = std::numeric_limits<double>::quiet_NaN();
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "com_y = nan: must be finite");
+  m.pose.position.y = 0.0;
+  m.friction_force.x = std::numeric_limits<double>::infinity();  // not a CSV column
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_NE(error.find("friction_force"), std::string::npos) << error;
+  m.friction_force.x = 0.0;
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "");
 }
 
 int main(int argc, char** argv) {
