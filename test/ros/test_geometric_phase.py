@@ -44,6 +44,8 @@ class GeometricPhaseLaunch(unittest.TestCase):
         marks = self.marks[name]
         self.assertIn('to', marks, '%s: simulated time did not reach %g s' % (name, self.t_to))
         a, b = marks['from'], marks['to']
+        self.assertGreater(b.sim_time - a.sim_time, 0.5 * (self.t_to - self.t_from),
+                           '%s: the first TopState came after t_from: too short a window for a direction' % name)
         dx = b.contact_point.x - a.contact_point.x
         dy = b.contact_point.y - a.contact_point.y
         return math.atan2(-dy, dx), dx, dy, b
