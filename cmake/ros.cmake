@@ -78,6 +78,9 @@ if(CATKIN_ENABLE_TESTING)
   catkin_run_tests_target(netns distributed netns-distributed.xml
     COMMAND "timeout -k 15 58 bash ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/distributed_netns.sh ${_netns_result} ${CATKIN_DEVEL_PREFIX}/.."
     DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # Time: /clock followed under use_sim_time, monotonic through ~reset and ~spawn; replay of a recorded bag.
+  add_rostest(test/ros/clock.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  add_rostest(test/ros/replay.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   if(TARGET top_sim_lcm)
     add_rostest_gtest(top_sim_lcm_test test/ros/lcm.test test/ros/test_lcm.cpp)
     target_link_libraries(top_sim_lcm_test top_sim_lcm ${catkin_LIBRARIES})
