@@ -34,9 +34,11 @@ RATE = 200.0  # publish rate [Hz]
 # off by seconds instead of milliseconds.
 FACTOR = 0.5
 SECONDS = 4.0  # wall seconds of recording
-# How far a TopState's stamp may be from the listener's clock at its arrival [simulated s]: the replayed topics come
-# on separate connections to separate threads of the listener, and rosbag's own clock ticks at 100 Hz.
-TOLERANCE = 0.1
+# TopState stamp - the listener's clock at its arrival [simulated s]: the replayed topics come on separate connections
+# to separate threads of the listener, rosbag's own clock ticks at 100 Hz. Median of its size: 0.02 s (a clock from
+# the wall time or from wall record times would be 0.5 s off or more); at most this far in the future: 0.25 s.
+# (Late messages are only logged: rosbag record starved of CPU gives a stretch of messages one late record time.)
+TYPICAL, TOLERANCE = 0.02, 0.25
 
 
 def stop(proc):
@@ -51,14 +53,18 @@ def value_of(topic):
 
 
 def read_bag(path):
-    """Per topic, the recorded values in the bag's order (record time)."""
+    """Per topic, the recorded values in the bag's order (record time); under 'late', record time - stamp of each
+    TopState [ns]."""
     out = {STATE: [], '/clock': [], '/tf': []}
+    late = []
     with rosbag.Bag(path) as b:
-        for topic, m, _ in b.read_messages(topics=list(out)):
+        for topic, m, t in b.read_messages(topics=list(out)):
             v = value_of(topic)(m)
             if v is not None:
                 out[topic].append(v)
-    return out
+            if topic == STATE:
+                late.append(t.to_nsec() - v)
+    return out, late
 
 
 class Replay(unittest.TestCase):
@@ -82,7 +88,7 @@ class Replay(unittest.TestCase):
                 stop(rec)
         finally:
             stop(node)
-        cls.recorded = read_bag(cls.bag)
+        cls.recorded, cls.late = read_bag(cls.bag)
 
     def play(self, *args):
         """Plays the bag with `args`; per topic, what this listener received (Stream)."""
@@ -106,12 +112,13 @@ class Replay(unittest.TestCase):
         early = len(got[STATE].values()) - len(ahead)
         rospy.loginfo('%s: %d top_state before the first /clock', what, early)
         self.assertLessEqual(early, 5, what)
-        assert_follows(self, ahead, TOLERANCE, what)
+        assert_follows(self, ahead, TYPICAL, TOLERANCE, what)
 
     def test_1_bag_holds_the_simulation_clock(self):
         rec = self.recorded
         n = {t: len(v) for t, v in rec.items()}
-        rospy.loginfo('bag: %s', n)
+        rospy.loginfo('bag: %s; TopState record time - stamp from %.4f to %.4f s', n, min(self.late) * NS,
+                      max(self.late) * NS)
         for topic, values in rec.items():
             self.assertGreaterEqual(len(values), 0.5 * RATE * SECONDS, topic)  # the recorder starts in about 1 s
             self.assertEqual(backward_steps(values, strict=True), [], topic + ' does not go forward in the bag')
@@ -130,14 +137,14 @@ class Replay(unittest.TestCase):
         rospy.loginfo('rosbag play: %d top_state and %d tf stamps replayed identical', len(self.recorded[STATE]),
                       len(self.recorded['/tf']))
         # rosbag sends the bag's /clock through its own clock publisher, whose queue holds one message: of clock
-        # messages recorded at one instant (the recorder's time moves only with /clock) it may drop some.
+        # messages it sends at once (recorded at one instant, or late when rosbag was starved of CPU) it drops some.
         clock, recorded = got['/clock'].values(), self.recorded['/clock']
         kept = set(clock)
         self.assertEqual([v for v in recorded if v in kept], clock, 'replayed /clock: not recorded values in order')
         gap = max(b - a for a, b in zip(clock, clock[1:]))
         rospy.loginfo('rosbag play: %d of %d recorded /clock values replayed, largest step %.4f s', len(clock),
                       len(recorded), gap * NS)
-        self.assertGreaterEqual(len(clock), 0.9 * len(recorded))
+        self.assertGreaterEqual(len(clock), 0.5 * len(recorded))
         self.assert_stamps_follow_clock(got, 'rosbag play')
 
     def test_3_play_clock_without_the_recorded_clock(self):
