@@ -226,16 +226,17 @@ class TopSimNode {
   }
 
   bool on_kill(top_sim::Kill::Request& req, top_sim::Kill::Response& res) {
+    res.success = false;
     if (req.name == kLaunchTopName) {
       res.message = std::string("'") + kLaunchTopName + "' is the launch-time top (it carries ~top_state, the plane "
                     "and dynamic_reconfigure): it cannot be killed; kill the spawned tops, or ~pause the node";
     } else if (std::unique_ptr<NodeTop> top = tops_.remove(req.name)) {
       output_->close(*top);
+      res.success = true;
       res.message = "killed top " + req.name + " (" + std::to_string(tops_.size()) + " tops left)";
     } else {
       res.message = "no top named '" + req.name + "' (~list gives the names)";
     }
-    res.success = res.message.rfind("killed", 0) == 0;
     if (res.success)
       ROS_INFO("top_sim_node: %s", res.message.c_str());
     else
