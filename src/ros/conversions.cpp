@@ -4,30 +4,11 @@
 #include <cmath>
 #include <sstream>
 
-#include "top_mesh.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/trajectory.hpp"
 
 namespace top_sim_ros {
-
-namespace {
-
-// Marker ids, one per kind and fixed: an update replaces the marker of the same (ns, id) in rviz.
-enum MarkerId : int {
-  kPlaneMarker = 0,
-  kTipMarker,
-  kBodyMarker,
-  kStripeMarker,
-  kStemMarker,
-  kSpinMarker,
-  kVelocityMarker,
-  kModeMarker,
-};
-
-constexpr int kBodySegments = 32;        // facets round the body: smooth at rviz's usual distances
-constexpr double kStripeWidth = 0.5;     // [rad] of the body's circumference painted, centred on body x
-constexpr double kStripeRaise = 0.02;    // stripe height above the surface, relative to the body radius
 
 geometry_msgs::Point point(const Eigen::Vector3d& v) {
   geometry_msgs::Point p;
@@ -47,95 +28,7 @@ geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q) {
   return m;
 }
 
-visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
-                                  int type, float r, float g, float b) {
-  visualization_msgs::Marker m;
-  m.header.frame_id = frame;
-  m.header.stamp = stamp;
-  m.ns = ns;
-  m.id = id;
-  m.type = type;
-  m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
-  m.color.r = r; m.color.g = g; m.color.b = b; m.color.a = 1.0f;
-  m.frame_locked = true;
-  return m;
-}
-
-// Arrow length saturating at `max_len`: direction matters more than size on screen.
-double arrow_length(double value, double reference, double max_len) {
-  const double a = std::abs(value);
-  return max_len * a / (a + reference);
-}
-
-struct Colour {
-  float r, g, b;
-};
-
-// Body colour by contact mode: slipping grey (the paper's permanent slipping contact), rolling green, flight blue.
-Colour mode_colour(top_sim::ContactMode mode) {
-  if (mode == top_sim::ContactMode::rolling) return {0.3f, 0.8f, 0.35f};
-  if (mode == top_sim::ContactMode::flight) return {0.35f, 0.55f, 0.95f};
-  return {0.7f, 0.7f, 0.75f};
-}
-
-// Plane: a square following the top in 0.25 m steps so a drifting top stays on it.
-visualization_msgs::Marker plane_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
-  visualization_msgs::Marker plane = marker(frame, stamp, "plane", kPlaneMarker, visualization_msgs::Marker::CUBE, 0.75f,
-                                                  0.78f, 0.85f);
-  const double cell = 0.25;
-  plane.pose.position.x = cell * std::round(s.contact_point.x() / cell);
-  plane.pose.position.y = cell * std::round(s.contact_point.y() / cell);
-  plane.pose.position.z = -0.0005;
-  plane.scale.x = plane.scale.y = 4 * cell;
-  plane.scale.z = 0.001;
-  plane.color.a = 0.6f;
-  return plane;
-}
-
-// Spin arrow along +f_hat for positive spin, -f_hat for negative (right-hand rule); velocity arrow at the contact.
-void add_arrows(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp,
-                visualization_msgs::MarkerArray& out) {
-  using visualization_msgs::Marker;
-  Marker spin = marker(frame, stamp, "spin", kSpinMarker, Marker::ARROW, 0.1f, 0.5f, 1.0f);
-  const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
-  spin.points = {point(s.com), point(s.com + spin_len * s.figure_axis)};
-  spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
-  out.markers.push_back(spin);
-
-  Marker vel = marker(frame, stamp, "velocity", kVelocityMarker, Marker::ARROW, 0.1f, 0.8f, 0.2f);
-  const double v = s.tip_velocity.norm();
-  const Eigen::Vector3d dir = v > 0.0 ? Eigen::Vector3d(s.tip_velocity / v) : Eigen::Vector3d::Zero();
-  vel.points = {point(s.contact_point), point(s.contact_point + arrow_length(v, 0.01, 0.05) * dir)};
-  vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
-  out.markers.push_back(vel);
-}
-
-// Body of revolution in the body's contact-mode colour, a stripe fixed to the body (it turns with the spin phase
-// that tf carries in the top frame) and the stem; all in the top frame.
-void add_body(const TopShape& shape, Colour colour, const std::string& frame, const ros::Time& stamp,
-              visualization_msgs::MarkerArray& out) {
-  using visualization_msgs::Marker;
-  Marker body = marker(frame, stamp, "body", kBodyMarker, Marker::TRIANGLE_LIST, colour.r, colour.g, colour.b);
-  body.scale.x = body.scale.y = body.scale.z = 1.0;  // TRIANGLE_LIST points are multiplied by the scale
-  for (const Eigen::Vector3d& p : revolve(shape.profile, kBodySegments, 0.0, 2.0 * M_PI))
-    body.points.push_back(point(p));
-  out.markers.push_back(body);
-
-  Marker stripe = marker(frame, stamp, "stripe", kStripeMarker, Marker::TRIANGLE_LIST, 1.0f, 0.5f, 0.0f);
-  stripe.scale = body.scale;
-  const int stripe_segments = std::max(1, static_cast<int>(std::ceil(kStripeWidth * kBodySegments / (2.0 * M_PI))));
-  for (const Eigen::Vector3d& p : revolve(raised_profile(shape.profile, kStripeRaise * shape.body_radius),
-                                          stripe_segments, -0.5 * kStripeWidth, kStripeWidth))
-    stripe.points.push_back(point(p));
-  out.markers.push_back(stripe);
-
-  Marker stem = marker(frame, stamp, "stem", kStemMarker, Marker::CYLINDER, 0.3f, 0.3f, 0.35f);
-  stem.pose.position.z = 0.5 * (shape.stem_bottom + shape.stem_top);
-  stem.scale.x = stem.scale.y = 2.0 * shape.stem_radius;
-  stem.scale.z = shape.stem_top - shape.stem_bottom;
-  out.markers.push_back(stem);
-}
+namespace {
 
 // "NAME = VALUE" of a non-finite number of `s`: the CSV column, else the fields outside the CSV.
 std::string non_finite_field(const top_sim::Snapshot& s) {
@@ -254,30 +147,13 @@ void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Fra
   plane_top.transform.rotation = quaternion(s.orientation.normalized());
 }
 
-void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
-                visualization_msgs::MarkerArray& out) {
-  using visualization_msgs::Marker;
-  out.markers.clear();
-  const TopShape shape = top_shape(top);
-
-  out.markers.push_back(plane_marker(s, frames.plane, stamp));
-
-  Marker tip = marker(frames.plane, stamp, "tip", kTipMarker, Marker::SPHERE, 0.9f, 0.2f, 0.2f);
-  tip.pose.position = point(s.tip_center);
-  tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * top.tip_radius;
-  out.markers.push_back(tip);
-
-  const Colour colour = mode_colour(s.contact_mode);
-  add_body(shape, colour, frames.top, stamp, out);
-  add_arrows(s, frames.plane, stamp, out);
-
-  // The contact mode as text above the top ("slipping", "rolling", "flight"), in the body's colour.
-  Marker mode = marker(frames.plane, stamp, "contact_mode", kModeMarker, Marker::TEXT_VIEW_FACING, colour.r,
-                       colour.g, colour.b);
-  mode.pose.position = point(s.com + Eigen::Vector3d(0.0, 0.0, shape.stem_top + 0.02));
-  mode.scale.z = 0.01;  // text height [m]
-  mode.text = top_sim::to_string(s.contact_mode);
-  out.markers.push_back(mode);
+void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+                          geometry_msgs::TransformStamped& plane_contact) {
+  plane_contact.header.stamp = stamp;
+  plane_contact.header.frame_id = frames.plane;
+  plane_contact.child_frame_id = frames.contact;
+  plane_contact.transform.translation = vector(s.contact_point);
+  plane_contact.transform.rotation = quaternion(Eigen::Quaterniond::Identity());
 }
 
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {

@@ -4,7 +4,6 @@
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/time.h>
 #include <string>
-#include <visualization_msgs/MarkerArray.h>
 
 #include "top_sim/TopCommand.h"
 #include "top_sim/TopState.h"
@@ -18,7 +17,12 @@ struct Frames {
   std::string world = "world";
   std::string plane = "plane";
   std::string top = "top";
+  std::string contact = "contact";  // origin at the contact point, plane axes (markers that keep their direction)
 };
+
+geometry_msgs::Point point(const Eigen::Vector3d& v);
+geometry_msgs::Vector3 vector(const Eigen::Vector3d& v);
+geometry_msgs::Quaternion quaternion(const Eigen::Quaterniond& q);
 
 void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::string& plane_frame,
             top_sim::TopState& out);
@@ -33,10 +37,9 @@ top_sim::Snapshot to_snapshot(const top_sim::TopState& msg, std::string& error);
 void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
                    geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top);
 
-// Plane, tip sphere, body of revolution with a stripe fixed to it, stem (top_mesh.hpp), spin and velocity arrows,
-// contact-mode text; one marker per namespace, each with its own fixed small id.
-void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
-                visualization_msgs::MarkerArray& out);
+// plane -> contact: the contact point with the plane's axes.
+void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+                          geometry_msgs::TransformStamped& plane_contact);
 
 // The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`.
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error);

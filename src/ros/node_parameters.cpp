@@ -77,6 +77,33 @@ void ParamReader::check_unknown() const {
   }
 }
 
+namespace {
+
+// What rviz shows: markers, trail, grid.
+void read_display_parameters(ParamReader& p, NodeParameters& n) {
+  n.trail_seconds = p.number("trail_seconds", n.trail_seconds);
+  require(std::isfinite(n.trail_seconds) && n.trail_seconds > 0.0, p.where("trail_seconds"), n.trail_seconds,
+          "> 0 s");
+  n.path_length = p.integer("path_length", n.path_length);
+  require(n.path_length >= 2, p.where("path_length"), n.path_length, ">= 2 (poses at most per trail)");
+  n.path_resolution = p.number("path_resolution", n.path_resolution);
+  require(std::isfinite(n.path_resolution) && n.path_resolution >= 0.0, p.where("path_resolution"),
+          n.path_resolution, ">= 0 m");
+  n.marker_rate = p.number("marker_rate", n.marker_rate);
+  require(std::isfinite(n.marker_rate) && n.marker_rate > 0.0, p.where("marker_rate"), n.marker_rate, "> 0 Hz");
+  n.path_rate = p.number("path_rate", n.path_rate);
+  require(std::isfinite(n.path_rate) && n.path_rate > 0.0, p.where("path_rate"), n.path_rate, "> 0 Hz");
+  const std::string color_by = p.text("color_by", "regime");
+  if (!parse_color_by(color_by, n.color_by))
+    throw ParameterError(p.where("color_by") + " = '" + color_by + "': must be one of regime, mode");
+  n.grid_pitch = p.number("grid_pitch", n.grid_pitch);
+  require(std::isfinite(n.grid_pitch) && n.grid_pitch > 0.0, p.where("grid_pitch"), n.grid_pitch, "> 0 m");
+  n.grid_cells = p.integer("grid_cells", n.grid_cells);
+  require(n.grid_cells >= 1 && n.grid_cells <= 1000, p.where("grid_cells"), n.grid_cells, "in [1, 1000]");
+}
+
+}  // namespace
+
 NodeParameters read_node_parameters(ParamReader& p) {
   NodeParameters n;
   n.publish_rate = p.number("publish_rate", n.publish_rate);
@@ -90,15 +117,11 @@ NodeParameters read_node_parameters(ParamReader& p) {
   n.frames.world = p.text("world_frame", n.frames.world);
   n.frames.plane = p.text("plane_frame", n.frames.plane);
   n.frames.top = p.text("top_frame", n.frames.top);
-  n.path_length = p.integer("path_length", n.path_length);
-  require(n.path_length >= 1, p.where("path_length"), n.path_length, ">= 1 (poses kept)");
+  n.frames.contact = p.text("contact_frame", n.frames.contact);
+  n.follow_frame = p.text("follow_frame", n.follow_frame);
+  n.follow = p.text("follow", n.follow);
+  read_display_parameters(p, n);
   n.path_resolution = p.number("path_resolution", n.path_resolution);
-  require(std::isfinite(n.path_resolution) && n.path_resolution >= 0.0, p.where("path_resolution"),
-          n.path_resolution, ">= 0 m");
-  n.marker_rate = p.number("marker_rate", n.marker_rate);
-  require(std::isfinite(n.marker_rate) && n.marker_rate > 0.0, p.where("marker_rate"), n.marker_rate, "> 0 Hz");
-  n.path_rate = p.number("path_rate", n.path_rate);
-  require(std::isfinite(n.path_rate) && n.path_rate > 0.0, p.where("path_rate"), n.path_rate, "> 0 Hz");
   n.lcm_url = p.text("lcm_url", n.lcm_url);
   n.lcm_channel = p.text("lcm_channel", n.lcm_channel);
   n.config_dir = p.text("config_dir", n.config_dir);

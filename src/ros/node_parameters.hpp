@@ -11,6 +11,7 @@
 #include <xmlrpcpp/XmlRpcValue.h>
 
 #include "conversions.hpp"
+#include "markers.hpp"
 #include "top_sim/scene.hpp"
 
 namespace top_sim_ros {
@@ -49,11 +50,17 @@ struct NodeParameters {
   double real_time_factor = 1.0;    // >= 0, 0 = as fast as possible
   bool publish_clock = false;       // /clock from the launch-time top's stamps
   bool publish_tf = true;           // tf for every top (off for thousands of tops watched through top_states)
-  Frames frames;                    // the launch-time top's; a spawned top NAME uses NAME/<plane>, NAME/<top>
-  int path_length = 2000;           // poses kept per top
+  Frames frames;                    // the launch-time top's; a spawned top NAME uses NAME/<plane>, NAME/<top>, ...
+  std::string follow_frame = "follow";  // at the followed top's contact point, plane axes (the camera's target)
+  std::string follow;               // the top it follows ("" = the launch-time top)
+  double trail_seconds = 60.0;      // [s] of simulated time the trail covers
+  int path_length = 5000;           // poses at most per trail: beyond, its older half is thinned (coverage kept)
   double path_resolution = 2.0e-4;  // [m] between poses
   double marker_rate = 30.0;        // [Hz]
   double path_rate = 10.0;          // [Hz]
+  ColorBy color_by = ColorBy::regime;
+  double grid_pitch = 0.05;         // [m]
+  int grid_cells = 40;
   std::string lcm_url, lcm_channel = "TOP_STATE";
   std::string config_dir;           // where scenes find tops/ and planes/
 };

@@ -9,6 +9,7 @@ Frames spawned_frames(const Frames& node_frames, const std::string& name) {
   f.world = node_frames.world;
   f.plane = name + "/" + node_frames.plane;
   f.top = name + "/" + node_frames.top;
+  f.contact = name + "/" + node_frames.contact;
   return f;
 }
 

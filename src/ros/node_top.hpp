@@ -72,7 +72,7 @@ class NodeTop {
   bool fault_reported_ = false, behind_reported_ = false;
 };
 
-// The frames of a spawned top NAME: NAME/<plane>, NAME/<top> under the node's world frame.
+// The frames of a spawned top NAME: NAME/<plane>, NAME/<top>, NAME/<contact> under the node's world frame.
 Frames spawned_frames(const Frames& node_frames, const std::string& name);
 
 }  // namespace top_sim_ros

@@ -3,8 +3,12 @@
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
+#include <boost/function.hpp>
 #include <rosgraph_msgs/Clock.h>
+#include <std_msgs/String.h>
 #include <visualization_msgs/MarkerArray.h>
+
+#include "markers.hpp"
 
 #include "top_sim/TopState.h"
 #include "top_sim/TopStateArray.h"
@@ -12,8 +16,12 @@
 namespace top_sim_ros {
 
 StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParameters& params, double stamp_origin)
-    : params_(params), stamp_origin_(stamp_origin) {
+    : params_(params), stamp_origin_(stamp_origin), follow_request_(params.follow) {
   markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  const boost::function<void(const std_msgs::String::ConstPtr&)> follow = [this](const std_msgs::String::ConstPtr& m) {
+    on_follow(m->data);
+  };
+  follow_sub_ = pnh.subscribe<std_msgs::String>("follow", 1, follow);
   states_ = pnh.advertise<top_sim::TopStateArray>("top_states", 10);
   if (params_.publish_clock) clock_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
   if (!params_.lcm_url.empty()) open_lcm();
@@ -42,20 +50,22 @@ ros::Time StateOutput::stamp(const NodeTop& top) const {
   return ros::Time(stamp_origin_ + top.stamp_offset() + top.sim().time());
 }
 
-namespace {
-
 // Marker namespaces carry the top's prefix, so rviz keeps one set per top ("" for the launch-time top).
-void add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
-                 visualization_msgs::MarkerArray& out) {
+void StateOutput::add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
+                              visualization_msgs::MarkerArray& out) const {
+  MarkerStyle style;
+  style.name = top.name();
+  style.color_by = params_.color_by;
+  style.grid_pitch = params_.grid_pitch;
+  style.grid_cells = params_.grid_cells;
   visualization_msgs::MarkerArray one;
-  to_markers(s, top.sim().model().top, stamp, top.frames(), one);
+  to_markers(s, top.sim().model().top, stamp, top.frames(), style, one);
+  one.markers.push_back(trail_marker(top.output.trail));
   for (auto& m : one.markers) {
     m.ns = top.prefix() + m.ns;
-    out.markers.push_back(m);
+    out.markers.push_back(std::move(m));
   }
 }
-
-}  // namespace
 
 void StateOutput::close(NodeTop& top) {
   visualization_msgs::MarkerArray gone;
@@ -66,6 +76,7 @@ void StateOutput::close(NodeTop& top) {
 
 void StateOutput::publish(TopSet& tops, double wall, bool paused, double requested_factor) {
   const bool array = states_.getNumSubscribers() > 0;
+  markers_watched_ = markers_.getNumSubscribers() > 0;
   top_sim::TopStateArray all;
   std::vector<geometry_msgs::TransformStamped> tf;
   tf.reserve(2 * tops.size());
@@ -103,6 +114,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
     all.header.frame_id = params_.frames.world;
     states_.publish(all);
   }
+  add_follow_transform(tops, tf);
   if (!tf.empty()) tf_.sendTransform(tf);
   publish_clock(tops.launch_top());
   publish_markers(tops, wall);
@@ -118,7 +130,51 @@ void StateOutput::add_transforms(NodeTop& top, const top_sim::Snapshot& s, const
   to_transforms(s, stamp, top.frames(), wp, pt);
   tf.push_back(wp);
   tf.push_back(pt);
+  if (markers_watched_) {  // only markers need it: thousands of unwatched tops send two transforms each
+    to_contact_transform(s, stamp, top.frames(), pt);
+    tf.push_back(pt);
+  }
   top.output.last_tf_stamp = stamp;
+}
+
+// The top ~follow names: a name asked for on the topic once it is known, else the one followed so far, else the
+// launch-time top (the followed top was killed).
+NodeTop& StateOutput::followed_top(TopSet& tops) {
+  if (!follow_request_.empty()) {
+    if (tops.find(follow_request_)) {
+      follow_ = follow_request_;
+      ROS_INFO("top_sim_node: %s follows top %s", params_.follow_frame.c_str(), follow_.c_str());
+    } else {
+      std::string known;
+      for (const std::string& n : tops.names()) known += (known.empty() ? "" : ", ") + n;
+      ROS_WARN("top_sim_node: follow = '%s': no such top (tops: %s); %s stays on %s", follow_request_.c_str(),
+               known.c_str(), params_.follow_frame.c_str(), follow_.empty() ? tops.launch_top().name().c_str()
+                                                                              : follow_.c_str());
+    }
+    follow_request_.clear();
+  }
+  NodeTop* top = follow_.empty() ? nullptr : tops.find(follow_);
+  if (!top && !follow_.empty()) {
+    ROS_WARN("top_sim_node: followed top %s is gone; %s follows top %s", follow_.c_str(),
+             params_.follow_frame.c_str(), tops.launch_top().name().c_str());
+    follow_.clear();
+  }
+  return top ? *top : tops.launch_top();
+}
+
+// follow: at the followed top's contact point with its plane's axes, stamped as that top's tf.
+void StateOutput::add_follow_transform(TopSet& tops, std::vector<geometry_msgs::TransformStamped>& tf) {
+  NodeTop& top = followed_top(tops);
+  if (!params_.publish_tf || params_.follow_frame.empty()) return;
+  const top_sim::Snapshot s = top.sim().snapshot();
+  if (!top_sim::all_finite(s)) return;
+  Frames frames = top.frames();
+  frames.contact = params_.follow_frame;
+  geometry_msgs::TransformStamped follow;
+  to_contact_transform(s, top.output.last_tf_stamp, frames, follow);
+  if (!(follow.header.stamp > last_follow_stamp_)) return;  // a repeated stamp is TF_REPEATED_DATA
+  last_follow_stamp_ = follow.header.stamp;
+  tf.push_back(follow);
 }
 
 // /clock follows the launch-time top, which is never removed and whose time never goes back (reset included).
@@ -135,6 +191,7 @@ void StateOutput::publish_markers(TopSet& tops, double wall) {
   if (wall - last_marker_wall_ < 1.0 / params_.marker_rate || markers_.getNumSubscribers() == 0) return;
   visualization_msgs::MarkerArray markers;
   for (auto& t : tops) {
+    trim_trail(t->output.trail);
     const top_sim::Snapshot s = t->sim().snapshot();
     if (top_sim::all_finite(s)) add_markers(*t, s, stamp(*t), markers);
   }
@@ -155,7 +212,7 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   last_path_wall_ = wall;
 }
 
-// Contact-point trail: a pose each time the point has moved path_resolution; path_length published at most.
+// Contact-point trail: a pose each time the point has moved path_resolution, over the last trail_seconds.
 void StateOutput::update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp) {
   nav_msgs::Path& path = top.output.trail;
   const Eigen::Vector3d p = s.contact_point;
@@ -171,14 +228,29 @@ void StateOutput::update_trail(NodeTop& top, const top_sim::Snapshot& s, const r
   ps.pose.position.z = p.z();
   ps.pose.orientation.w = 1.0;
   path.poses.push_back(ps);
-  // Trimmed in chunks (erasing the oldest pose each tick moved path_length poses per tick and top).
-  const std::size_t keep = static_cast<std::size_t>(params_.path_length);
-  if (path.poses.size() > keep + keep / 4 + 1) trim_trail(path);
+  if (path.poses.size() > static_cast<std::size_t>(params_.path_length)) thin_trail(path);
 }
 
+// Over path_length poses: every other pose of the older half goes, so the trail still covers trail_seconds, its
+// old part coarser (a fast top's trail would otherwise cover a fraction of a second).
+void StateOutput::thin_trail(nav_msgs::Path& path) const {
+  auto& poses = path.poses;
+  const std::size_t half = poses.size() / 2;
+  std::size_t kept = 1;  // the oldest pose stays: the trail's start
+  for (std::size_t i = 1; i < half; ++i)
+    if (i % 2 == 0) poses[kept++] = std::move(poses[i]);
+  poses.erase(poses.begin() + kept, poses.begin() + half);
+}
+
+// Poses older than trail_seconds before the newest go (before each publication; a pose's stamp is its time).
 void StateOutput::trim_trail(nav_msgs::Path& path) const {
-  const std::size_t keep = static_cast<std::size_t>(params_.path_length);
-  if (path.poses.size() > keep) path.poses.erase(path.poses.begin(), path.poses.begin() + (path.poses.size() - keep));
+  auto& poses = path.poses;
+  if (poses.empty()) return;
+  const ros::Time newest = poses.back().header.stamp;
+  const double keep_from = newest.toSec() - params_.trail_seconds;
+  std::size_t stale = 0;
+  while (stale + 1 < poses.size() && poses[stale].header.stamp.toSec() < keep_from) ++stale;
+  if (stale > 0) poses.erase(poses.begin(), poses.begin() + stale);
 }
 
 void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <ros/ros.h>
 
@@ -29,6 +30,7 @@ class StateOutput {
   void open(NodeTop& top, ros::NodeHandle& pnh);  // advertises the top's top_state and path
   void close(NodeTop& top);                       // deletes its markers in rviz
   void clear_trail(NodeTop& top) { top.output.trail.poses.clear(); }
+  const std::string& followed() const { return follow_; }
 
   // One period's output for every top.
   void publish(TopSet& tops, double wall, bool paused, double requested_factor);
@@ -41,18 +43,27 @@ class StateOutput {
   void add_transforms(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
                       std::vector<geometry_msgs::TransformStamped>& tf);
   void publish_clock(const NodeTop& launch_top);
+  void on_follow(const std::string& name) { follow_request_ = name; }
+  NodeTop& followed_top(TopSet& tops);
+  void add_follow_transform(TopSet& tops, std::vector<geometry_msgs::TransformStamped>& tf);
+  void add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
+                   visualization_msgs::MarkerArray& out) const;
   void publish_markers(TopSet& tops, double wall);
   void publish_paths(TopSet& tops, double wall);
   void update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp);
   void trim_trail(nav_msgs::Path& path) const;
+  void thin_trail(nav_msgs::Path& path) const;
   void publish_lcm(const top_sim::Snapshot& s, double achieved_factor);
   void open_lcm();
 
   NodeParameters params_;
   double stamp_origin_;
   ros::Publisher markers_, states_, clock_;
+  ros::Subscriber follow_sub_;
+  std::string follow_, follow_request_;  // the followed top's name ("" = launch-time top); a name asked on ~follow
+  bool markers_watched_ = false;         // ~markers has subscribers this tick: contact frames are needed
   tf2_ros::TransformBroadcaster tf_;
-  ros::Time last_clock_;
+  ros::Time last_clock_, last_follow_stamp_;
   double last_marker_wall_ = 0.0, last_path_wall_ = 0.0;
   std::size_t published_ = 0;
   std::string lcm_status_ = "off";

@@ -12,6 +12,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include "conversions.hpp"
+#include "markers.hpp"
 #include "top_mesh.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
@@ -150,34 +151,133 @@ TEST(TopStateMsg, ContactModeAndGapAreMapped) {
   EXPECT_FALSE(top_sim::all_finite(s)) << "a NaN gap must not be published";
 }
 
-TEST(Markers, ContactModeShowsAsBodyColourAndText) {
+bool same(const std_msgs::ColorRGBA& a, const std_msgs::ColorRGBA& b) { return a.r == b.r && a.g == b.g && a.b == b.b; }
+
+const visualization_msgs::Marker& find_marker_or_fail(const visualization_msgs::MarkerArray& a, const std::string& ns) {
+  for (const auto& m : a.markers)
+    if (m.ns == ns) return m;
+  ADD_FAILURE() << "no marker " << ns;
+  static const visualization_msgs::Marker none;
+  return none;
+}
+
+top_sim::Top small_top() {
   top_sim::Top top;
   top.mass = 0.025;
   top.inertia_axial = 5e-6;
   top.tip_radius = 1.5e-3;
   top.com_offset = 0.01;
-  auto find = [](const visualization_msgs::MarkerArray& a, const std::string& ns) {
-    for (const auto& m : a.markers)
-      if (m.ns == ns) return m;
-    ADD_FAILURE() << "no marker " << ns;
-    return visualization_msgs::Marker();
-  };
-  visualization_msgs::MarkerArray slipping, rolling, flight;
+  return top;
+}
+
+// Colour by mode: the three contact modes differ; colour by regime: the five regimes differ.
+TEST(Markers, BodyColourShowsTheModeOrTheRegime) {
+  using top_sim_ros::ColorBy;
   top_sim::Snapshot s;
+  std::vector<std_msgs::ColorRGBA> seen;
+  auto body = [&](ColorBy by) {
+    top_sim_ros::MarkerStyle style;
+    style.color_by = by;
+    visualization_msgs::MarkerArray a;
+    top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
+    return find_marker_or_fail(a, "body").color;
+  };
+  for (auto mode : {top_sim::ContactMode::slipping, top_sim::ContactMode::rolling, top_sim::ContactMode::flight}) {
+    s.contact_mode = mode;
+    seen.push_back(body(ColorBy::mode));
+  }
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    for (std::size_t j = i + 1; j < seen.size(); ++j) EXPECT_FALSE(same(seen[i], seen[j])) << "modes " << i << ", " << j;
+  seen.clear();
+  for (int r = 0; r < top_sim::kRegimeCount; ++r) {
+    s.regime = static_cast<top_sim::Regime>(r);
+    seen.push_back(body(ColorBy::regime));
+  }
+  for (std::size_t i = 0; i < seen.size(); ++i)
+    for (std::size_t j = i + 1; j < seen.size(); ++j)
+      EXPECT_FALSE(same(seen[i], seen[j])) << top_sim::to_string(static_cast<top_sim::Regime>(i)) << " and "
+                                           << top_sim::to_string(static_cast<top_sim::Regime>(j));
+  top_sim_ros::ColorBy by;
+  EXPECT_TRUE(top_sim_ros::parse_color_by("mode", by));
+  EXPECT_EQ(by, ColorBy::mode);
+  EXPECT_FALSE(top_sim_ros::parse_color_by("Regime", by));
+}
+
+// The label names the top, its regime and contact mode, phi and (when there is one) phi*; a fault replaces them.
+TEST(Markers, LabelShowsRegimeModeAndPhi) {
+  top_sim::Snapshot s;
+  s.regime = top_sim::Regime::sleeping;
   s.contact_mode = top_sim::ContactMode::slipping;
-  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), slipping);
-  s.contact_mode = top_sim::ContactMode::rolling;
-  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), rolling);
-  s.contact_mode = top_sim::ContactMode::flight;
-  top_sim_ros::to_markers(s, top, ros::Time(1.0), top_sim_ros::Frames(), flight);
-  EXPECT_EQ(find(slipping, "contact_mode").text, "slipping");
-  EXPECT_EQ(find(rolling, "contact_mode").text, "rolling");
-  EXPECT_EQ(find(flight, "contact_mode").text, "flight");
-  EXPECT_EQ(find(flight, "contact_mode").type, visualization_msgs::Marker::TEXT_VIEW_FACING);
-  const auto a = find(slipping, "body").color, b = find(rolling, "body").color, c = find(flight, "body").color;
-  EXPECT_TRUE(a.r != b.r || a.g != b.g || a.b != b.b) << "slipping and rolling look the same";
-  EXPECT_TRUE(b.r != c.r || b.g != c.g || b.b != c.b) << "rolling and flight look the same";
-  EXPECT_TRUE(a.r != c.r || a.g != c.g || a.b != c.b) << "slipping and flight look the same";
+  s.phi = 0.2701;
+  s.has_stationary_state = true;
+  s.phi_star = 0.2699;
+  EXPECT_EQ(top_sim_ros::status_text("top", s), "top: sleeping, slipping, phi 0.270 / phi* 0.270");
+  s.has_stationary_state = false;
+  s.regime = top_sim::Regime::sliding;
+  EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270");
+  s.regime = top_sim::Regime::contact_fault;
+  s.fault_message = "penetration 2 mm";
+  EXPECT_EQ(top_sim_ros::status_text("b", s), "b: fault: penetration 2 mm");
+  top_sim_ros::MarkerStyle style;
+  style.name = "b";
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
+  EXPECT_EQ(find_marker_or_fail(a, "label").text, "b: fault: penetration 2 mm");
+  EXPECT_EQ(find_marker_or_fail(a, "label").type, visualization_msgs::Marker::TEXT_VIEW_FACING);
+}
+
+// Nothing drawn on the top is placed in the plane frame from a snapshot (it would trail the top by speed /
+// marker_rate): tip and spin arrow are in the top frame, the velocity arrow and label in the contact frame; all
+// frame-locked. The tip sphere sits f below the centre of mass on the figure axis.
+TEST(Markers, TopMarkersAreAttachedToFramesThatTfMoves) {
+  top_sim::Simulator sim(top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/supercritical.yaml"));
+  ASSERT_TRUE(sim.advance_to(1.0));
+  const top_sim::Snapshot s = sim.snapshot();
+  const top_sim::Top& top = sim.model().top;
+  top_sim_ros::Frames frames;
+  frames.top = "b/top";
+  frames.contact = "b/contact";
+  frames.plane = "b/plane";
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(s, top, ros::Time(1.0), frames, top_sim_ros::MarkerStyle(), a);
+  for (const auto& m : a.markers) {
+    EXPECT_TRUE(m.frame_locked) << m.ns;
+    if (m.ns == "plane" || m.ns == "grid") EXPECT_EQ(m.header.frame_id, "b/plane") << m.ns;
+    else if (m.ns == "velocity" || m.ns == "label") EXPECT_EQ(m.header.frame_id, "b/contact") << m.ns;
+    else EXPECT_EQ(m.header.frame_id, "b/top") << m.ns;
+  }
+  const auto& tip = find_marker_or_fail(a, "tip").pose.position;
+  EXPECT_NEAR(tip.x, 0.0, 1e-12);
+  EXPECT_NEAR(tip.y, 0.0, 1e-12);
+  EXPECT_NEAR(tip.z, -top.com_offset, 1e-12);
+  const auto& spin = find_marker_or_fail(a, "spin").points;
+  ASSERT_EQ(spin.size(), 2u);
+  EXPECT_NEAR(std::hypot(spin[1].x, spin[1].y), 0.0, 1e-12) << "the spin arrow lies on the figure axis";
+  const auto& vel = find_marker_or_fail(a, "velocity").points;
+  ASSERT_EQ(vel.size(), 2u);
+  EXPECT_EQ(vel[0].x, 0.0);
+  const Eigen::Vector3d arrow(vel[1].x, vel[1].y, vel[1].z);
+  EXPECT_GT(arrow.normalized().dot(s.tip_velocity.normalized()), 1.0 - 1e-12) << "keeps the velocity's direction";
+}
+
+// The grid stays on the plane's lattice (lines at multiples of the pitch) and under the contact point, at any
+// distance from the origin.
+TEST(Markers, GridIsSnappedToThePitchAroundTheContactPoint) {
+  top_sim::Snapshot s;
+  s.contact_point = Eigen::Vector3d(1234.5678, -98.7654, 0.0);
+  top_sim_ros::MarkerStyle style;
+  style.grid_pitch = 0.05;
+  style.grid_cells = 10;
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
+  const auto& grid = find_marker_or_fail(a, "grid");
+  EXPECT_EQ(grid.type, visualization_msgs::Marker::LINE_LIST);
+  EXPECT_EQ(grid.points.size(), 4u * 11u);
+  for (const double c : {grid.pose.position.x, grid.pose.position.y})
+    EXPECT_NEAR(c / 0.05, std::round(c / 0.05), 1e-6) << "centre on the lattice";
+  EXPECT_LE(std::abs(grid.pose.position.x - s.contact_point.x()), 0.025 + 1e-9);
+  EXPECT_LE(std::abs(grid.pose.position.y - s.contact_point.y()), 0.025 + 1e-9);
+  EXPECT_NEAR(grid.points.front().x, -0.25, 1e-12);
 }
 
 // The three tops of config/tops and the homogeneous ball (f = 0, body inside the tip sphere) of config/scenes.
@@ -270,7 +370,7 @@ TEST(Markers, BodyStripeAndStemAreDrawnInTheTopFrame) {
   top_sim_ros::Frames frames;
   frames.top = "spin200/top";
   visualization_msgs::MarkerArray a;
-  top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), frames, a);
+  top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), frames, top_sim_ros::MarkerStyle(), a);
   std::set<int> ids;
   for (const auto& m : a.markers) {
     EXPECT_TRUE(ids.insert(m.id).second) << "id " << m.id << " used twice";
