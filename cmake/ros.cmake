@@ -72,6 +72,7 @@ if(CATKIN_ENABLE_TESTING)
               ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
   # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.
   # Its own timeout: the script stops and removes what it started on TERM.
   set(_netns_result ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/netns-distributed.xml)

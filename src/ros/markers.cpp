@@ -67,7 +67,7 @@ void add_plane(const top_sim::Snapshot& s, const Frames& frames, const ros::Time
   Marker grid = marker(frames.plane, stamp, "grid", kGridMarker, Marker::LINE_LIST, {0.6f, 0.6f, 0.65f});
   grid.pose.position = plane.pose.position;
   grid.pose.position.z = -0.0004;
-  grid.scale.x = 0.1 * pitch;  // line width
+  grid.scale.x = 0.04 * pitch;  // line width
   grid.color.a = 0.6f;
   for (int i = 0; i <= style.grid_cells; ++i) {
     const double u = -half + i * pitch;
@@ -191,9 +191,10 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   add_contact_markers(s, shape, style, colour, frames.contact, stamp, out);
 }
 
-visualization_msgs::Marker trail_marker(const nav_msgs::Path& path) {
+visualization_msgs::Marker trail_marker(const nav_msgs::Path& path, const ros::Time& stamp,
+                                        const std::string& plane_frame) {
   using visualization_msgs::Marker;
-  Marker trail = marker(path.header.frame_id, path.header.stamp, "trail", kTrailMarker, Marker::LINE_STRIP,
+  Marker trail = marker(plane_frame, stamp, "trail", kTrailMarker, Marker::LINE_STRIP,
                         {1.0f, 0.78f, 0.0f});
   trail.scale.x = 0.0015;  // line width [m]
   trail.points.reserve(path.poses.size());

@@ -44,6 +44,6 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);
 
 // The trail (the ~path's poses, in the plane frame) as a LINE_STRIP in namespace "trail".
-visualization_msgs::Marker trail_marker(const nav_msgs::Path& path);
+visualization_msgs::Marker trail_marker(const nav_msgs::Path& path, const ros::Time& stamp, const std::string& plane_frame);
 
 }  // namespace top_sim_ros

@@ -60,7 +60,7 @@ void StateOutput::add_markers(const NodeTop& top, const top_sim::Snapshot& s, co
   style.grid_cells = params_.grid_cells;
   visualization_msgs::MarkerArray one;
   to_markers(s, top.sim().model().top, stamp, top.frames(), style, one);
-  one.markers.push_back(trail_marker(top.output.trail));
+  one.markers.push_back(trail_marker(top.output.trail, stamp, top.frames().plane));
   for (auto& m : one.markers) {
     m.ns = top.prefix() + m.ns;
     out.markers.push_back(std::move(m));
