@@ -5,7 +5,12 @@
 # Environment: TOP_SIM_SCENE (default config/scenes/default.yaml), TOP_SIM_SHOT_RTF (real-time factor, default 2),
 # TOP_SIM_SHOT_WAIT (wall seconds of streaming before the shot, default 8), TOP_SIM_SHOT_SIZE (default 1280x800),
 # TOP_SIM_SHOT_LAUNCH (launch file of the package, default top_sim.launch; TOP_SIM_SCENE is passed only to that
-# one) and TOP_SIM_SHOT_TOPIC (a TopState topic that shows streaming has started, default /top_sim/top_state).
+# one), TOP_SIM_SHOT_TOPIC (a TopState topic that shows streaming has started, default /top_sim/top_state),
+# TOP_SIM_SHOT_ARGS (more launch arguments, e.g. "color_by:=mode") and TOP_SIM_SHOT_SETUP (bash commands run once
+# streaming has started, e.g. rosservice calls that spawn tops).
+# Three tops:
+#   TOP_SIM_SHOT_SETUP='rosservice call /top_sim/spawn b "$(printf "initial: {spin: -200.0, position: [0.08, 0.0]}")"' \
+#     TOP_SIM_SHOT_RTF=1 scripts/rviz_screenshot.sh docs/img/rviz_three_tops.png
 # The geometric-phase figure:
 #   TOP_SIM_SHOT_LAUNCH=geometric_phase.launch TOP_SIM_SHOT_TOPIC=/spin400/top_sim/top_state TOP_SIM_SHOT_RTF=1 \
 #     TOP_SIM_SHOT_WAIT=18 scripts/rviz_screenshot.sh docs/img/geometric_phase.png
@@ -22,6 +27,8 @@ LAUNCH=${TOP_SIM_SHOT_LAUNCH:-top_sim.launch}
 TOPIC=${TOP_SIM_SHOT_TOPIC:-/top_sim/top_state}
 LAUNCH_ARGS=""
 if [ "$LAUNCH" = top_sim.launch ]; then LAUNCH_ARGS="scene:=$SCENE"; fi
+LAUNCH_ARGS="$LAUNCH_ARGS ${TOP_SIM_SHOT_ARGS:-}"
+SETUP=${TOP_SIM_SHOT_SETUP:-}
 
 for tool in xvfb-run xwininfo; do
   command -v "$tool" >/dev/null 2>&1 || top_sim_die "$tool not found (Debian packages: xvfb, x11-utils)"
@@ -41,7 +48,7 @@ export ROS_MASTER_URI=http://localhost:$PORT
 LOG=$(mktemp -d /tmp/top_sim_shot.XXXXXX)
 top_sim_log "rviz screenshot: $LAUNCH $LAUNCH_ARGS, real_time_factor $RTF, ${WAIT} s; logs in $LOG"
 
-export OUT LAUNCH LAUNCH_ARGS TOPIC RTF WAIT PORT LOG TOP_SIM_REPO
+export OUT LAUNCH LAUNCH_ARGS TOPIC RTF WAIT PORT LOG TOP_SIM_REPO SETUP
 # Software GL: Xvfb has no GPU; rviz's OGRE renders through Mesa llvmpipe.
 export LIBGL_ALWAYS_SOFTWARE=1
 xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
@@ -59,7 +66,10 @@ xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
     kill -0 "$launch" 2>/dev/null || break
     sleep 1
   done
-  if $streaming; then
+  if $streaming && [ -n "$SETUP" ]; then
+    bash -c "$SETUP" >"$LOG/setup.log" 2>&1 || { echo "TOP_SIM_SHOT_SETUP failed (see $LOG/setup.log)" >&2; status=1; }
+  fi
+  if $streaming && [ $status = 0 ]; then
     sleep "$WAIT"
     /usr/bin/python3 "$TOP_SIM_REPO/scripts/grab_window.py" --title RViz --out "$OUT" --timeout 30 || status=$?
     rostopic echo -n 1 "$TOPIC/sim_time" >"$LOG/last_state.txt" 2>&1 || true

@@ -156,6 +156,17 @@ void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, co
   plane_contact.transform.rotation = quaternion(Eigen::Quaterniond::Identity());
 }
 
+void to_grid_transform(const top_sim::Snapshot& s, double pitch, const ros::Time& stamp, const Frames& frames,
+                       geometry_msgs::TransformStamped& plane_grid) {
+  const Eigen::Vector3d centre(pitch * std::round(s.contact_point.x() / pitch),
+                               pitch * std::round(s.contact_point.y() / pitch), 0.0);
+  plane_grid.header.stamp = stamp;
+  plane_grid.header.frame_id = frames.plane;
+  plane_grid.child_frame_id = frames.grid;
+  plane_grid.transform.translation = vector(centre);
+  plane_grid.transform.rotation = quaternion(Eigen::Quaterniond::Identity());
+}
+
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {
   top_sim::Command c;
   error.clear();

@@ -18,6 +18,7 @@ struct Frames {
   std::string plane = "plane";
   std::string top = "top";
   std::string contact = "contact";  // origin at the contact point, plane axes (markers that keep their direction)
+  std::string grid = "grid";        // the contact point snapped to the grid pitch, plane axes (the grid's centre)
 };
 
 geometry_msgs::Point point(const Eigen::Vector3d& v);
@@ -40,6 +41,11 @@ void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Fra
 // plane -> contact: the contact point with the plane's axes.
 void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
                           geometry_msgs::TransformStamped& plane_contact);
+
+// plane -> grid: the contact point snapped to multiples of `pitch` in the plane, plane axes; lines drawn about
+// its origin at multiples of the pitch keep their place on the plane while the grid follows the top.
+void to_grid_transform(const top_sim::Snapshot& s, double pitch, const ros::Time& stamp, const Frames& frames,
+                       geometry_msgs::TransformStamped& plane_grid);
 
 // The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`.
 top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error);

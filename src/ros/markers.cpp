@@ -49,22 +49,21 @@ double arrow_length(double value, double reference, double max_len) {
   return max_len * a / (a + reference);
 }
 
-// The grid and a translucent square under it, in the plane frame, centred on the contact point snapped to the
-// pitch: the lines keep their place on the plane while the square follows the top at any distance.
-void add_plane(const top_sim::Snapshot& s, const Frames& frames, const ros::Time& stamp, const MarkerStyle& style,
+// The grid and a translucent square under it, in the grid frame (the contact point snapped to the pitch, moved by
+// tf at the tf rate): the lines keep their place on the plane while the square follows the top at any distance
+// and speed.
+void add_plane(const Frames& frames, const ros::Time& stamp, const MarkerStyle& style,
                visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   const double pitch = style.grid_pitch, half = 0.5 * style.grid_cells * pitch;
-  Marker plane = marker(frames.plane, stamp, "plane", kPlaneMarker, Marker::CUBE, {0.75f, 0.78f, 0.85f});
-  plane.pose.position.x = pitch * std::round(s.contact_point.x() / pitch);
-  plane.pose.position.y = pitch * std::round(s.contact_point.y() / pitch);
+  Marker plane = marker(frames.grid, stamp, "plane", kPlaneMarker, Marker::CUBE, {0.75f, 0.78f, 0.85f});
   plane.pose.position.z = -0.001;
   plane.scale.x = plane.scale.y = 2.0 * half;
   plane.scale.z = 0.001;
   plane.color.a = 0.35f;
   out.markers.push_back(plane);
 
-  Marker grid = marker(frames.plane, stamp, "grid", kGridMarker, Marker::LINE_LIST, {0.6f, 0.6f, 0.65f});
+  Marker grid = marker(frames.grid, stamp, "grid", kGridMarker, Marker::LINE_LIST, {0.6f, 0.6f, 0.65f});
   grid.pose.position = plane.pose.position;
   grid.pose.position.z = -0.0004;
   grid.scale.x = 0.04 * pitch;  // line width
@@ -137,7 +136,7 @@ void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, cons
 
   Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, colour);
   label.pose.position.z = (s.com - s.contact_point).z() + shape.stem_top + 0.02;
-  label.scale.z = 0.01;  // text height [m]
+  label.scale.z = 0.008;  // text height [m]
   label.text = status_text(style.name, s);
   out.markers.push_back(label);
 }
@@ -185,7 +184,7 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   out.markers.clear();
   const TopShape shape = top_shape(top);
   const Rgb colour = body_colour(s, style.color_by);
-  add_plane(s, frames, stamp, style, out);
+  add_plane(frames, stamp, style, out);
   add_body(shape, colour, frames.top, stamp, out);
   add_tip_and_spin(s, top, frames.top, stamp, out);
   add_contact_markers(s, shape, style, colour, frames.contact, stamp, out);

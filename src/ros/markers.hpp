@@ -38,7 +38,7 @@ struct MarkerStyle {
 };
 
 // The top's markers: body, stripe, stem, tip sphere and spin arrow in the top frame; velocity arrow and label in
-// the contact frame (plane axes, so the arrow keeps its direction on the plane); the grid in the plane frame.
+// the contact frame (plane axes, so the arrow keeps its direction on the plane); the grid in the grid frame.
 // One marker per namespace, each with its own fixed small id; every marker frame-locked.
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);

@@ -118,6 +118,7 @@ NodeParameters read_node_parameters(ParamReader& p) {
   n.frames.plane = p.text("plane_frame", n.frames.plane);
   n.frames.top = p.text("top_frame", n.frames.top);
   n.frames.contact = p.text("contact_frame", n.frames.contact);
+  n.frames.grid = p.text("grid_frame", n.frames.grid);
   n.follow_frame = p.text("follow_frame", n.follow_frame);
   n.follow = p.text("follow", n.follow);
   read_display_parameters(p, n);

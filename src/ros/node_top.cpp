@@ -10,6 +10,7 @@ Frames spawned_frames(const Frames& node_frames, const std::string& name) {
   f.plane = name + "/" + node_frames.plane;
   f.top = name + "/" + node_frames.top;
   f.contact = name + "/" + node_frames.contact;
+  f.grid = name + "/" + node_frames.grid;
   return f;
 }
 

@@ -133,6 +133,8 @@ void StateOutput::add_transforms(NodeTop& top, const top_sim::Snapshot& s, const
   if (markers_watched_) {  // only markers need it: thousands of unwatched tops send two transforms each
     to_contact_transform(s, stamp, top.frames(), pt);
     tf.push_back(pt);
+    to_grid_transform(s, params_.grid_pitch, stamp, top.frames(), pt);
+    tf.push_back(pt);
   }
   top.output.last_tf_stamp = stamp;
 }

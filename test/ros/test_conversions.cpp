@@ -238,11 +238,12 @@ TEST(Markers, TopMarkersAreAttachedToFramesThatTfMoves) {
   frames.top = "b/top";
   frames.contact = "b/contact";
   frames.plane = "b/plane";
+  frames.grid = "b/grid";
   visualization_msgs::MarkerArray a;
   top_sim_ros::to_markers(s, top, ros::Time(1.0), frames, top_sim_ros::MarkerStyle(), a);
   for (const auto& m : a.markers) {
     EXPECT_TRUE(m.frame_locked) << m.ns;
-    if (m.ns == "plane" || m.ns == "grid") EXPECT_EQ(m.header.frame_id, "b/plane") << m.ns;
+    if (m.ns == "plane" || m.ns == "grid") EXPECT_EQ(m.header.frame_id, "b/grid") << m.ns;
     else if (m.ns == "velocity" || m.ns == "label") EXPECT_EQ(m.header.frame_id, "b/contact") << m.ns;
     else EXPECT_EQ(m.header.frame_id, "b/top") << m.ns;
   }
@@ -260,24 +261,31 @@ TEST(Markers, TopMarkersAreAttachedToFramesThatTfMoves) {
   EXPECT_GT(arrow.normalized().dot(s.tip_velocity.normalized()), 1.0 - 1e-12) << "keeps the velocity's direction";
 }
 
-// The grid stays on the plane's lattice (lines at multiples of the pitch) and under the contact point, at any
-// distance from the origin.
+// The grid stays on the plane's lattice (its frame at multiples of the pitch) and under the contact point, at any
+// distance from the origin; its lines are drawn about the grid frame's origin.
 TEST(Markers, GridIsSnappedToThePitchAroundTheContactPoint) {
   top_sim::Snapshot s;
   s.contact_point = Eigen::Vector3d(1234.5678, -98.7654, 0.0);
+  geometry_msgs::TransformStamped g;
+  top_sim_ros::to_grid_transform(s, 0.05, ros::Time(1.0), top_sim_ros::Frames(), g);
+  EXPECT_EQ(g.header.frame_id, "plane");
+  EXPECT_EQ(g.child_frame_id, "grid");
+  for (const double c : {g.transform.translation.x, g.transform.translation.y})
+    EXPECT_NEAR(c / 0.05, std::round(c / 0.05), 1e-6) << "centre on the lattice";
+  EXPECT_LE(std::abs(g.transform.translation.x - s.contact_point.x()), 0.025 + 1e-9);
+  EXPECT_LE(std::abs(g.transform.translation.y - s.contact_point.y()), 0.025 + 1e-9);
+  EXPECT_EQ(g.transform.translation.z, 0.0);
   top_sim_ros::MarkerStyle style;
   style.grid_pitch = 0.05;
   style.grid_cells = 10;
   visualization_msgs::MarkerArray a;
   top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
   const auto& grid = find_marker_or_fail(a, "grid");
+  EXPECT_EQ(grid.header.frame_id, "grid");
   EXPECT_EQ(grid.type, visualization_msgs::Marker::LINE_LIST);
   EXPECT_EQ(grid.points.size(), 4u * 11u);
-  for (const double c : {grid.pose.position.x, grid.pose.position.y})
-    EXPECT_NEAR(c / 0.05, std::round(c / 0.05), 1e-6) << "centre on the lattice";
-  EXPECT_LE(std::abs(grid.pose.position.x - s.contact_point.x()), 0.025 + 1e-9);
-  EXPECT_LE(std::abs(grid.pose.position.y - s.contact_point.y()), 0.025 + 1e-9);
   EXPECT_NEAR(grid.points.front().x, -0.25, 1e-12);
+  EXPECT_NEAR(grid.pose.position.x, 0.0, 1e-12);
 }
 
 // The three tops of config/tops and the homogeneous ball (f = 0, body inside the tip sphere) of config/scenes.
