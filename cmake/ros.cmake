@@ -1,7 +1,7 @@
 # The ROS node, messages, dynamic_reconfigure and rostests (included after the core targets exist).
 find_package(catkin REQUIRED COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
-  tf2 tf2_ros diagnostic_updater dynamic_reconfigure message_generation)
+  tf2 tf2_ros diagnostic_updater dynamic_reconfigure message_generation roslib)
 
 add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg TopStateArray.msg)
 add_service_files(DIRECTORY srv FILES Spawn.srv Kill.srv ListTops.srv)
@@ -12,7 +12,7 @@ catkin_package(
   INCLUDE_DIRS include
   LIBRARIES top_sim_core
   CATKIN_DEPENDS message_runtime roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs
-                 rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure)
+                 rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure roslib)
 
 # The node's parts (docs/architecture.md, "The ROS node"), shared by the node and its unit tests.
 add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/node_parameters.cpp
@@ -73,6 +73,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
+  add_rostest(test/ros/reset_start.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.
   # Its own timeout: the script stops and removes what it started on TERM.
   set(_netns_result ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/netns-distributed.xml)

@@ -2,14 +2,22 @@
 #pragma once
 
 #include <charconv>
+#include <cmath>
 #include <string>
 
 namespace top_sim {
 
+// A NaN is "nan" whatever its sign bit (to_chars writes "-nan" for some, which reads as a negative number).
 inline std::string format_number(double v) {
+  if (std::isnan(v)) return "nan";
   char buf[32];
   const auto r = std::to_chars(buf, buf + sizeof buf, v);
   return std::string(buf, r.ptr);
+}
+
+// The one form of a range error: "FIELD = VALUE: must be RANGE".
+inline std::string range_message(const std::string& field, double value, const std::string& range) {
+  return field + " = " + format_number(value) + ": must be " + range;
 }
 
 }  // namespace top_sim

@@ -51,7 +51,8 @@ class Pacer {
   double due(double wall, double sample_sim);
 
   // After the physics (or after sending a sample): feeds the achieved-factor window and the behind state.
-  // running = false (paused, stopped by a fault): the window still advances, behind() is false.
+  // running = false (paused, stopped by a fault): the achieved factor is 0, behind() is false, and the window
+  // restarts there, so the seconds spent stopped never count against the run that follows (a reset after a fault).
   void record(double wall, double sim, bool running = true);
 
   // Re-anchors at (wall, sim): after pause, resume, reset or a jump. clear_window also forgets the achieved factor

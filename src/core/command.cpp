@@ -12,11 +12,7 @@
 namespace top_sim {
 
 namespace {
-std::string bad(const char* field, double value, const char* range) {
-  std::ostringstream os;
-  os << field << " = " << format_number(value) << ": must be " << range;
-  return os.str();
-}
+std::string bad(const char* field, double value, const char* range) { return range_message(field, value, range); }
 }  // namespace
 
 std::string validate(const Command& c, const Model& model) {

@@ -215,7 +215,9 @@ FitResult fit_stationary(const std::vector<StationaryMeasurement>& data, const S
   const std::vector<SlipPoint> pts = slip_points(data, options, res.sigma_known);
   const LawModel model = law_model(options, pts);
   const int p = static_cast<int>(model.names.size()), n = static_cast<int>(pts.size());
-  if (n < p) throw FitError(std::to_string(n) + " points are fewer than the " + std::to_string(p) + " parameters");
+  if (n < p)
+    throw FitError(std::to_string(n) + (n == 1 ? " point is" : " points are") + " fewer than the " +
+                   std::to_string(p) + " parameters");
   if (n == p && !res.sigma_known) throw FitError("without sigma columns the errors need more points than parameters");
   res.names = model.names;
   res.dof = n - p;

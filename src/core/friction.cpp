@@ -1,5 +1,6 @@
 // Friction laws mu(s) (physics.md section 4).
 #include "top_sim/friction.hpp"
+#include "top_sim/format.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -106,9 +107,7 @@ double friction_slope(const FrictionLaw& law, double s) {
 
 namespace {
 std::string bad(const std::string& field, double value, const std::string& range) {
-  std::ostringstream os;
-  os << field << " = " << value << ": must be " << range;
-  return os.str();
+  return range_message(field, value, range);
 }
 }  // namespace
 

@@ -50,12 +50,19 @@ void Pacer::drop_debt(double wall, double sim, double target) {
 }
 
 void Pacer::record(double wall, double sim, bool running) {
+  if (!running) {  // stopped (paused, faulted): nothing to measure; the window restarts here when it runs again
+    window_.clear();
+    window_.emplace_back(wall, sim);
+    achieved_ = 0.0;
+    behind_ = false;
+    return;
+  }
   if (!window_.empty() && wall < window_.back().first) window_.clear();  // the wall clock went back: start over
   window_.emplace_back(wall, sim);
   while (window_.size() > 2 && wall - window_[1].first >= options_.window) window_.pop_front();
   const double dw = wall - window_.front().first;
   achieved_ = dw > 0.0 ? (sim - window_.front().second) / dw : 0.0;
-  if (!running || factor_ <= 0.0) {
+  if (factor_ <= 0.0) {
     behind_ = false;
     return;
   }

@@ -4,13 +4,27 @@
 #include <sstream>
 
 #include "param_yaml.hpp"
+#include "top_sim/format.hpp"
 
 namespace top_sim_ros {
 
 namespace {
 
+// A parameter's value as the user wrote it ('fast', 3, true, a list of 2 values), not XML-RPC's wire form.
+std::string as_typed(XmlRpc::XmlRpcValue& v) {
+  switch (v.getType()) {
+    case XmlRpc::XmlRpcValue::TypeString: return "'" + static_cast<std::string>(v) + "'";
+    case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(v) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(v));
+    case XmlRpc::XmlRpcValue::TypeDouble: return top_sim::format_number(static_cast<double>(v));
+    case XmlRpc::XmlRpcValue::TypeArray: return "a list of " + std::to_string(v.size()) + " values";
+    case XmlRpc::XmlRpcValue::TypeStruct: return "a map";
+    default: return "a value of another type";
+  }
+}
+
 std::string type_error(const std::string& where, XmlRpc::XmlRpcValue& v, const std::string& wanted) {
-  return where + " = " + v.toXml() + ": must be " + wanted;
+  return where + " = " + as_typed(v) + ": must be " + wanted;
 }
 
 void require(bool ok, const std::string& where, double value, const std::string& range) {
@@ -20,10 +34,7 @@ void require(bool ok, const std::string& where, double value, const std::string&
 }  // namespace
 
 std::string range_error(const std::string& name, double value, const std::string& range) {
-  std::ostringstream os;
-  os.precision(17);
-  os << name << " = " << value << ": must be " << range;
-  return os.str();
+  return top_sim::range_message(name, value, range);
 }
 
 ParamReader::ParamReader(XmlRpc::XmlRpcValue tree, std::string ns) : tree_(std::move(tree)), ns_(std::move(ns)) {
@@ -141,6 +152,8 @@ top_sim::Scene scene_value(XmlRpc::XmlRpcValue& value, const std::string& source
   throw ParameterError(type_error(source, value, "scene YAML text or a map of scene keys"));
 }
 
+std::string default_scene_file(const std::string& config_dir) { return config_dir + "/scenes/default.yaml"; }
+
 top_sim::Scene read_node_scene(ParamReader& p, const std::string& config_dir) {
   const std::string file = p.text("scene_file", "");
   const bool inline_scene = p.has("scene");
@@ -148,9 +161,12 @@ top_sim::Scene read_node_scene(ParamReader& p, const std::string& config_dir) {
     throw ParameterError("the scene comes from one place: " + p.where("scene_file") + " = '" + file + "' and " +
                          p.where("scene") + " are both set; keep one");
   if (!file.empty()) return top_sim::load_scene(file);
-  if (!inline_scene)
-    throw ParameterError("no scene: set " + p.where("scene_file") + " (a scene file) or " + p.where("scene") +
-                         " (scene YAML text or keys)");
+  if (!inline_scene) {
+    if (config_dir.empty())
+      throw ParameterError("no scene: set " + p.where("scene_file") + " (a scene file) or " + p.where("scene") +
+                           " (scene YAML text or keys)");
+    return top_sim::load_scene(default_scene_file(config_dir));  // as turtlesim starts with one turtle
+  }
   const top_sim::Scene none;
   XmlRpc::XmlRpcValue& v = p.raw("scene");
   if (v.getType() == XmlRpc::XmlRpcValue::TypeString && static_cast<std::string>(v).empty())

@@ -74,9 +74,11 @@ std::string range_error(const std::string& name, double value, const std::string
 NodeParameters read_node_parameters(ParamReader& params);
 
 // The launch-time scene: ~scene_file (read by load_scene, as top_sim_run reads it) or ~scene (YAML text, read
-// with the same checks; or a map of parameters, which rosparam has already de-duplicated). Exactly one of them.
+// with the same checks; or a map of parameters, which rosparam has already de-duplicated). At most one of them;
+// neither = the default scene of `config_dir` (an error when config_dir is empty).
 // Throws top_sim::SceneError (bad scene) or ParameterError (bad source).
 top_sim::Scene read_node_scene(ParamReader& params, const std::string& config_dir);
+std::string default_scene_file(const std::string& config_dir);  // config_dir/scenes/default.yaml
 
 // A scene given as a parameter value: YAML text (parse_scene_text: the file loader's checks; "" = `fallback`) or a
 // map of parameters (parse_scene). `source` names it in messages.

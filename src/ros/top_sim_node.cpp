@@ -16,6 +16,8 @@
 #include "node_parameters.hpp"
 #include "node_reconfigure.hpp"
 #include "param_yaml.hpp"
+#include <ros/package.h>
+
 #include "state_output.hpp"
 #include "top_input.hpp"
 #include "top_set.hpp"
@@ -48,8 +50,8 @@ class TopSimNode {
     connect(top);
     if (!start_command_.empty()) {
       top.sim().submit(start_command_);  // validated in read_start()
-      ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s applied at t = 0 (reset returns to the "
-               "scene's)", pnh_.getNamespace().c_str());
+      ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s applied at t = 0 (and again by ~reset)",
+               pnh_.getNamespace().c_str());
     }
     for (auto& [name, scene] : start_tops) {
       const std::string error = spawn(name, scene);
@@ -97,6 +99,10 @@ class TopSimNode {
       ros::param::get(ns, tree);
       top_sim_ros::ParamReader params(tree, ns);
       params_ = top_sim_ros::read_node_parameters(params);
+      if (params_.config_dir.empty()) params_.config_dir = ros::package::getPath("top_sim") + "/config";
+      if (!params.has("scene_file") && !params.has("scene"))
+        ROS_INFO("top_sim_node: no ~scene_file or ~scene: the default scene %s",
+                 top_sim_ros::default_scene_file(params_.config_dir).c_str());
       scene_ = top_sim_ros::read_node_scene(params, params_.config_dir);
       start_tops = top_sim_ros::read_start_tops(params, params_.config_dir, scene_);
       for (const std::string& key : top_sim_ros::reconfigure_physics_keys()) params.know(key);
@@ -254,10 +260,18 @@ class TopSimNode {
     const double wall = ros::WallTime::now().toSec();
     for (auto& top : tops_) top->reset(wall);
     reconfigure_->show_scene(scene_);
+    // The launch-time top returns to the start the user chose (alpha:=, spin:=), as it started, not to the file's.
+    if (!start_command_.empty()) {
+      tops_.launch_top().sim().submit(start_command_);
+      reconfigure_->show(start_command_);
+    }
     res.success = true;
     std::ostringstream os;
-    os << "reset " << tops_.size() << (tops_.size() == 1 ? " top" : " tops")
-       << " to their scenes' initial states at t = " << t << " s (time keeps running forward)";
+    if (tops_.size() == 1)
+      os << "reset top " << tops_.launch_top().name() << " to its start";
+    else
+      os << "reset " << tops_.size() << " tops to their starts";
+    os << " at t = " << t << " s (time keeps running forward)";
     res.message = os.str();
     ROS_INFO("top_sim_node: %s", res.message.c_str());
     return true;

@@ -2,11 +2,14 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <limits>
 #include <string>
 #include <vector>
 
 #include "../../src/cli/run_output.hpp"
+#include "top_sim/command.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/friction.hpp"
 #include "top_sim/limits.hpp"
 
 #include "test_util.hpp"
@@ -152,3 +155,19 @@ TEST(Reliability, RunReportsProgressInWallClockSlices) {
 }
 
 }  // namespace
+
+// A NaN reads "nan" in every message, never "-nan" (a negative NaN is what 0 * inf and friends often give).
+TEST(Messages, NaNIsNamedWithoutASign) {
+  const double negative_nan = -std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(std::signbit(negative_nan));
+  EXPECT_EQ(format_number(negative_nan), "nan");
+  Command c;
+  c.inclination = negative_nan;
+  const std::string error = validate(c, Model());
+  EXPECT_NE(error.find("inclination = nan: must be"), std::string::npos) << error;
+  EXPECT_EQ(error.find("-nan"), std::string::npos) << error;
+  FrictionLaw law;
+  law.kind = FrictionLawKind::coulomb;
+  law.mu = negative_nan;
+  EXPECT_NE(validate(law).find(" = nan: must be"), std::string::npos) << validate(law);
+}

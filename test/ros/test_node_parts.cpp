@@ -72,6 +72,8 @@ TEST(NodeParameters, UnknownKeysTyposAndWrongTypesAreErrors) {
   const std::string wrong = message_of([&] { top_sim_ros::read_node_parameters(r); });
   EXPECT_NE(wrong.find("/n/publish_rate"), std::string::npos) << wrong;
   EXPECT_NE(wrong.find("must be a number"), std::string::npos) << wrong;
+  EXPECT_NE(wrong.find("/n/publish_rate = 'fast': must be"), std::string::npos) << "as typed, not XML-RPC: " << wrong;
+  EXPECT_EQ(wrong.find("<value>"), std::string::npos) << wrong;
 
   XmlRpc::XmlRpcValue range;
   range["publish_rate"] = 0.0;
@@ -88,6 +90,11 @@ TEST(NodeParameters, SceneFromOnePlaceOnly) {
   XmlRpc::XmlRpcValue none;
   ParamReader q(none, "/n");
   EXPECT_NE(message_of([&] { top_sim_ros::read_node_scene(q, ""); }).find("no scene"), std::string::npos);
+  // Neither, with a config directory (rosrun top_sim top_sim_node): its default scene, as turtlesim's one turtle.
+  const top_sim::Scene fallback = top_sim_ros::read_node_scene(q, TOP_SIM_TEST_CONFIG_DIR);
+  const top_sim::Scene scene = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml");
+  EXPECT_EQ(fallback.initial.spin, scene.initial.spin);
+  EXPECT_EQ(fallback.model.plane.inclination, scene.model.plane.inclination);
 }
 
 TEST(NodeParameters, StartTopsInNameOrderEmptyMeansTheNodesScene) {
