@@ -48,3 +48,19 @@ def by_second(ax, t, x, y, **kw):
         if idx[-1] + 1 < len(t):
             idx = np.append(idx, idx[-1] + 1)  # join to the next piece
         ax.plot(x[idx], y[idx], color=SECOND_COLOURS[k % 2], **kw)
+
+
+def continuous_angle(phi):
+    """phi without the 2 pi jumps where it wraps at +-pi (a direction near pi, e.g. a negative-spin top's phi*)."""
+    return np.unwrap(np.asarray(phi, dtype=float))
+
+
+def levels_in(values, level):
+    """level + 2 pi k for every integer k that lies within the range of values (phi* on an unwrapped phi axis);
+    the nearest one when none does."""
+    lo, hi = float(np.min(values)), float(np.max(values))
+    k_lo, k_hi = math.ceil((lo - level) / (2 * math.pi)), math.floor((hi - level) / (2 * math.pi))
+    if k_lo > k_hi:
+        k = round((0.5 * (lo + hi) - level) / (2 * math.pi))
+        return [level + 2 * math.pi * k]
+    return [level + 2 * math.pi * k for k in range(k_lo, k_hi + 1)]

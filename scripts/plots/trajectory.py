@@ -9,7 +9,7 @@ import argparse
 
 import numpy as np
 
-from plotlib import load, plt
+from plotlib import continuous_angle, levels_in, load, plt
 
 
 def main(argv=None):
@@ -30,9 +30,12 @@ def main(argv=None):
     path.set_ylabel("contact y (uphill) [mm]")
     path.set_title("contact point on the plane")
     path.legend(fontsize=7)
-    phi.plot(t, d["phi"], lw=0.8, label="phi (direction of travel)")
+    # Unwrapped: a direction near +-pi (a negative-spin top) would otherwise jump the full height at each wrap.
+    angle = continuous_angle(d["phi"])
+    phi.plot(t, angle, lw=0.8, label="phi (direction of travel, unwrapped)")
     if a.phi_star is not None:
-        phi.axhline(a.phi_star, color="k", ls="--", lw=1.0, label=f"phi* = {a.phi_star:.6f}")
+        for i, level in enumerate(levels_in(angle, a.phi_star)):
+            phi.axhline(level, color="k", ls="--", lw=1.0, label=f"phi* = {a.phi_star:.6f}" if i == 0 else None)
     phi.set_xlabel("t [s]")
     phi.set_ylabel("phi [rad]")
     phi.set_title("phi(t) against phi*")

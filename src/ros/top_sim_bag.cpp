@@ -104,8 +104,10 @@ struct Top {
   std::string name, topic;
 };
 
-// "/ns/top_state" -> "ns" (the node's launch-time top), "/ns/NAME/top_state" -> "NAME"; another topic of the type
-// (remapped) is named by its last part.
+constexpr const char* kLaunchTopName = "top";  // the node's name for its launch-time top (docs/ros.md, "Many tops")
+
+// "/ns/top_state" -> "top" (a node's launch-time top, named as in the node's ~list), "/ns/NAME/top_state" ->
+// "NAME"; another topic of the type (remapped) is named by its last part.
 std::string short_name(const std::string& topic) {
   std::vector<std::string> parts;
   std::string part;
@@ -114,7 +116,8 @@ std::string short_name(const std::string& topic) {
     if (!part.empty()) parts.push_back(part);
     part.clear();
   }
-  if (parts.size() >= 2 && parts.back() == "top_state") return parts[parts.size() - 2];
+  if (parts.size() == 2 && parts.back() == "top_state") return kLaunchTopName;
+  if (parts.size() > 2 && parts.back() == "top_state") return parts[parts.size() - 2];
   return parts.empty() ? topic : parts.back();
 }
 

@@ -206,7 +206,7 @@ TEST(FitCli, BadDataExitsTwoWithAClearMessage) {
   const std::string few = write_temp("few.csv", "alpha,phi,sigma_alpha,sigma_phi\n0.1,0.2,0.01,0.01\n");
   r = run_fit_cli("stationary '" + few + "' --law paper");
   EXPECT_EQ(r.exit_code, 2);
-  EXPECT_NE(r.err.find("1 points are fewer than the 2 parameters"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("1 point is fewer than the 2 parameters"), std::string::npos) << r.err;  // singular for one
   const std::string inf = write_temp("inf.csv", "alpha,phi\n0.1,0.2\n0.1,inf\n0.2,0.3\n");
   r = run_fit_cli("stationary '" + inf + "' --law paper");
   EXPECT_EQ(r.exit_code, 2);

@@ -62,7 +62,7 @@ class RecordLaunch(unittest.TestCase):
         bag = self.record('top_sim_fit_rec', 200.0, 4.0)
         work = os.path.dirname(bag)
         data = os.path.join(work, 'run.csv')
-        subprocess.run([devel_binary('top_sim_bag'), bag, '--top', 'top_sim_fit_rec', '--csv', data], check=True)
+        subprocess.run([devel_binary('top_sim_bag'), bag, '--top', 'top', '--csv', data], check=True)
         with open(os.path.join(PKG, 'config', 'scenes', 'default.yaml')) as f:
             scene = f.read().replace('friction: pmma', 'friction: {law: paper, mu_c: 0.3, s_c: 0.5}')
         self.assertIn('mu_c: 0.3', scene)
@@ -252,7 +252,7 @@ class BagTool(unittest.TestCase):
                         '/chatter': 'not a top'})
         p = self.run_tool(bag, '--csv', self.out('run.csv'), '--json', self.out('run.json'))
         self.assertEqual(p.returncode, 0, p.stderr)
-        for top, rows, skipped, seconds in (('top_sim', 4, 1, 0.3), ('spinner', 3, 0, 1.0)):
+        for top, rows, skipped, seconds in (('top', 4, 1, 0.3), ('spinner', 3, 0, 1.0)):
             data = read_csv(self.out('run_%s.csv' % top))
             self.assertEqual(len(data['t']), rows, top)
             self.assertEqual(list(data['regime']), ['sleeping'] * rows)
@@ -272,7 +272,8 @@ class BagTool(unittest.TestCase):
             p = self.run_tool(bag, '--top', wanted, '--csv', self.out('one.csv'))
             self.assertEqual(p.returncode, 0, p.stderr)
             self.assertEqual(len(read_csv(self.out('one.csv'))['t']), 3)
-        p = self.run_tool(bag, '--top', 'top_sim', '--from', '0.1', '--to', '0.25', '--csv', self.out('window.csv'))
+        # The launch-time top is 'top', as in the node's ~list and top_states.
+        p = self.run_tool(bag, '--top', 'top', '--from', '0.1', '--to', '0.25', '--csv', self.out('window.csv'))
         self.assertEqual(p.returncode, 0, p.stderr)
         self.assertEqual(list(read_csv(self.out('window.csv'))['t']), [0.1, 0.2])
 
@@ -284,6 +285,13 @@ class BagTool(unittest.TestCase):
             with open(self.out('s_%s.json' % name)) as f:
                 self.assertEqual(json.load(f)['top'], name)
         self.assertEqual(self.run_tool(bag, '--top', 'x').returncode, 2)
+        # Two nodes' launch-time tops (both 'top') are named by their nodes.
+        bag = self.bag({'/a/top_state': [0.0, 0.1], '/b/top_state': [0.0, 0.2]}, 'two_nodes.bag')
+        p = self.run_tool(bag, '--json', self.out('n.json'))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        for name in ('a', 'b'):
+            with open(self.out('n_%s.json' % name)) as f:
+                self.assertEqual(json.load(f)['top'], name)
 
     def test_bad_input_exits_two_and_write_errors_one(self):
         two = self.bag({'/top_sim/top_state': [0.0, 0.1], '/top_sim/spinner/top_state': [0.0, 0.1]})
