@@ -2,6 +2,7 @@
 #pragma once
 
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -99,6 +100,17 @@ double friction_slope(const FrictionLaw& law, double s);
 
 // Empty when the parameters are admissible, else "field = value: allowed range".
 std::string validate(const FrictionLaw& law);
+
+// A change of friction law as a command gives it: the law and the parameters it names (and a table's points).
+struct FrictionChange {
+  FrictionLawKind kind = FrictionLawKind::paper;
+  std::vector<std::pair<const FrictionParameter*, double>> given;
+  std::optional<std::vector<std::pair<double, double>>> points;
+};
+
+// The one rule of every adapter (TopCommand, Python's apply, dynamic_reconfigure): the parameters a change does not
+// name keep their values in the law in force (a table keeps its points unless new ones are given).
+FrictionLaw changed_law(const FrictionLaw& in_force, const FrictionChange& change);
 
 // True when the law gives mu(s) < 0 somewhere on [0, 1] (so the clamp is active there).
 bool clamp_is_active(const FrictionLaw& law);

@@ -29,6 +29,14 @@ std::string ParameterRange::text() const {
          (upper_open ? ")" : "]");
 }
 
+FrictionLaw changed_law(const FrictionLaw& in_force, const FrictionChange& change) {
+  FrictionLaw law = in_force;
+  law.kind = change.kind;
+  for (const auto& [parameter, value] : change.given) law.*(parameter->member) = value;
+  if (change.points) law.points = *change.points;
+  return law;
+}
+
 const FrictionParameter* find_friction_parameter(const std::string& name) {
   for (const FrictionParameter& p : kFrictionParameters)
     if (name == p.name) return &p;

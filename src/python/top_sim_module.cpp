@@ -134,39 +134,37 @@ double number(const py::handle& v, const std::string& key) {
 }
 
 // {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table); omitted parameters
-// take FrictionLaw's defaults, as in a scene file.
-FrictionLaw friction_from(const py::handle& value) {
+// keep their values in the law in force (top_sim::changed_law, the rule of every adapter).
+FrictionLaw friction_from(const py::handle& value, const FrictionLaw& in_force) {
   if (!py::isinstance<py::dict>(value)) throw py::value_error("friction must be a dict {'law': ..., parameters}");
-  FrictionLaw law;
+  FrictionChange change;
   const py::dict d = py::reinterpret_borrow<py::dict>(value);
   const std::string name = d.contains("law") ? py::str(d["law"]).cast<std::string>() : "";
-  if (!parse_friction_law_kind(name, law.kind))
+  if (!parse_friction_law_kind(name, change.kind))
     throw py::value_error("friction.law = '" + name + "': must be one of " + friction_law_names(", "));
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "law") continue;
     const FrictionParameter* p = find_friction_parameter(key);
-    if (key == kFrictionPointsKey && law.kind == kFrictionPointsLaw) {
-      for (const auto& point : item.second) {
-        const auto pair = point.cast<std::pair<double, double>>();
-        law.points.push_back(pair);
-      }
-    } else if (p != nullptr && p->law == law.kind) {
-      law.*(p->member) = number(item.second, "friction." + key);
+    if (key == kFrictionPointsKey && change.kind == kFrictionPointsLaw) {
+      change.points.emplace();
+      for (const auto& point : item.second) change.points->push_back(point.cast<std::pair<double, double>>());
+    } else if (p != nullptr && p->law == change.kind) {
+      change.given.emplace_back(p, number(item.second, "friction." + key));
     } else {
-      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(law.kind));
+      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(change.kind));
     }
   }
-  return law;
+  return changed_law(in_force, change);
 }
 
 // The keys of top_sim.Command (command.hpp); the core validates the values.
-Command command_from(const py::dict& d) {
+Command command_from(const py::dict& d, const FrictionLaw& in_force) {
   Command c;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "friction") {
-      c.friction = friction_from(item.second);
+      c.friction = friction_from(item.second, in_force);
       continue;
     }
     const double v = number(item.second, key);
@@ -230,7 +228,12 @@ class PySimulator {
   }
 
   void apply(const py::dict& d) {
-    const std::string error = sim_->submit(command_from(d));
+    FrictionLaw in_force;
+    {
+      auto lock = own();
+      in_force = sim_->model().friction;
+    }
+    const std::string error = sim_->submit(command_from(d, in_force));
     if (!error.empty()) throw py::value_error(error);
   }
 

@@ -167,7 +167,47 @@ void to_grid_transform(const top_sim::Snapshot& s, double pitch, const ros::Time
   plane_grid.transform.rotation = quaternion(Eigen::Quaterniond::Identity());
 }
 
-top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) {
+namespace {
+
+double parameter_of(const top_sim::TopCommand& msg, const std::string& name) {
+#define TOP_SIM_FIELD_OF_MSG(kind, field, range) \
+  if (name == #field) return msg.field;
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_FIELD_OF_MSG)
+#undef TOP_SIM_FIELD_OF_MSG
+  return 0.0;
+}
+
+// The law and the parameters a TopCommand gives: those named in friction_given, else the law's nonzero ones.
+std::string friction_change(const top_sim::TopCommand& msg, top_sim::FrictionChange& change) {
+  if (!top_sim::parse_friction_law_kind(msg.friction_law, change.kind))
+    return "friction_law = '" + msg.friction_law + "': must be one of " + top_sim::friction_law_names(", ");
+  for (const std::string& name : msg.friction_given) {
+    const top_sim::FrictionParameter* p = top_sim::find_friction_parameter(name);
+    if (p == nullptr || p->law != change.kind)
+      return "friction_given: '" + name + "': the " + msg.friction_law + " law reads " +
+             top_sim::friction_parameter_names(change.kind);
+    change.given.emplace_back(p, parameter_of(msg, name));
+  }
+  if (msg.friction_given.empty())
+    for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
+      if (p.law == change.kind && parameter_of(msg, p.name) != 0.0) change.given.emplace_back(&p, parameter_of(msg, p.name));
+  if (change.kind != top_sim::kFrictionPointsLaw) return "";
+  if (msg.table_s.size() != msg.table_mu.size()) {
+    std::ostringstream os;
+    os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()
+       << ": must have the same length";
+    return os.str();
+  }
+  if (msg.table_s.empty()) return "";  // the table in force keeps its points
+  change.points.emplace();
+  for (std::size_t i = 0; i < msg.table_s.size(); ++i) change.points->emplace_back(msg.table_s[i], msg.table_mu[i]);
+  return "";
+}
+
+}  // namespace
+
+top_sim::Command to_command(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
+                            std::string& error) {
   top_sim::Command c;
   error.clear();
   if (msg.set_inclination) c.inclination = msg.inclination;
@@ -177,25 +217,10 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, std::string& error) 
   if (msg.set_static_friction) c.static_friction = msg.static_friction;  // validated by the core (>= mu(0))
   if (msg.set_restitution) c.restitution = msg.restitution;              // validated by the core ([0, 1])
   if (msg.set_friction) {
-    top_sim::FrictionLaw law;
-    if (!top_sim::parse_friction_law_kind(msg.friction_law, law.kind)) {
-      error = "friction_law = '" + msg.friction_law + "': must be one of " + top_sim::friction_law_names(", ");
-      return c;
-    }
-#define TOP_SIM_COPY_FROM_MSG(kind, name, range) law.name = msg.name;
-    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_MSG)
-#undef TOP_SIM_COPY_FROM_MSG
-    if (law.kind == top_sim::kFrictionPointsLaw) {
-      if (msg.table_s.size() != msg.table_mu.size()) {
-        std::ostringstream os;
-        os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()
-           << ": must have the same length";
-        error = os.str();
-        return c;
-      }
-      for (std::size_t i = 0; i < msg.table_s.size(); ++i) law.points.emplace_back(msg.table_s[i], msg.table_mu[i]);
-    }
-    c.friction = law;
+    top_sim::FrictionChange change;
+    error = friction_change(msg, change);
+    if (!error.empty()) return c;
+    c.friction = top_sim::changed_law(in_force, change);
   }
   if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_restitution all false)";
   return c;

@@ -16,10 +16,19 @@ void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& 
 #undef TOP_SIM_COPY_TO_CONFIG
 }
 
-void friction_from_config(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
-#define TOP_SIM_COPY_FROM_CONFIG(kind, name, range) law.name = cfg.name;
-  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_CONFIG)
-#undef TOP_SIM_COPY_FROM_CONFIG
+// The config's fields of law `kind` as a change over the law in force (top_sim::changed_law, the rule of every
+// adapter); the other laws' fields stay as they are in force.
+top_sim::FrictionChange friction_from_config(const top_sim::TopSimConfig& cfg, top_sim::FrictionLawKind kind) {
+  top_sim::FrictionChange change;
+  change.kind = kind;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+    if (p.law != kind) continue;
+#define TOP_SIM_FIELD_OF_CONFIG(kind_, field, range_) \
+    if (std::string(p.name) == #field) change.given.emplace_back(&p, cfg.field);
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_FIELD_OF_CONFIG)
+#undef TOP_SIM_FIELD_OF_CONFIG
+  }
+  return change;
 }
 
 }  // namespace
@@ -100,8 +109,7 @@ bool NodeReconfigure::reconfigured_friction(const top_sim::TopSimConfig& cfg, to
              "TopCommand; kept the %s law", top_sim::to_string(law.kind));
     return false;
   }
-  law.kind = kind;
-  friction_from_config(cfg, law);
+  law = top_sim::changed_law(law, friction_from_config(cfg, kind));
   return true;
 }
 

@@ -135,7 +135,7 @@ class TopSimNode {
           if (error.empty() && shown && reconfigure_) reconfigure_->show(c);
           return error;
         },
-        rejections_);
+        [&sim] { return sim.model().friction; }, rejections_);
   }
 
   void advertise_services() {

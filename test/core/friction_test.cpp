@@ -31,6 +31,26 @@ FrictionLaw table(std::vector<std::pair<double, double>> points) {
 // Rounding of a few products of O(1) numbers.
 constexpr double kExact = 1e-15;
 
+// The adapters' one rule: a change names a law and some parameters; the others keep their values in force.
+TEST(FrictionLaws, ChangedLawKeepsWhatTheChangeDoesNotName) {
+  FrictionLaw in_force;
+  in_force.kind = FrictionLawKind::table;
+  in_force.points = {{0.0, 0.1}, {1.0, 0.3}};
+  in_force.s_c = 0.45;
+  FrictionChange change;
+  change.kind = FrictionLawKind::paper;
+  change.given.emplace_back(find_friction_parameter("mu_c"), 0.3);
+  const FrictionLaw paper = changed_law(in_force, change);
+  EXPECT_EQ(paper.kind, FrictionLawKind::paper);
+  EXPECT_EQ(paper.mu_c, 0.3);
+  EXPECT_EQ(paper.s_c, 0.45);
+  FrictionChange back;
+  back.kind = FrictionLawKind::table;
+  EXPECT_EQ(changed_law(paper, back).points, in_force.points) << "no points given: the table's stay";
+  back.points = std::vector<std::pair<double, double>>{{0.0, 0.2}, {1.0, 0.2}};
+  EXPECT_EQ(changed_law(paper, back).points, *back.points);
+}
+
 TEST(FrictionLaws, PaperLawValuesByHand) {
   const FrictionLaw law = paper(0.25, 0.6);
   // mu_c s (2 s_c - s) / s_c^2 evaluated by hand: s = 0.3 -> 0.25 * 0.3 * 0.9 / 0.36 = 0.1875.

@@ -135,6 +135,15 @@ def test_commands_take_effect_and_bad_ones_are_refused():
     np.testing.assert_array_equal(after["com"], before["com"])
 
 
+def test_friction_parameters_not_given_keep_the_law_in_force():
+    # One rule with TopCommand and dynamic_reconfigure: s_c not given stays the scene's 0.6 (pmma), mu_c changes.
+    sim = top_sim.Simulator("default")
+    sim.apply({"friction": {"law": "paper", "mu_c": 0.4}})
+    sim.run(0.01)
+    s_star = 0.6 * (1.0 - math.sqrt(1.0 - math.tan(0.1) / 0.4))
+    assert sim.stationary_state()["phi"] == pytest.approx(2.0 * math.atan(s_star), abs=1e-12)
+
+
 def test_friction_command_changes_phi_star():
     sim = top_sim.Simulator("default")
     sim.run(0.01)

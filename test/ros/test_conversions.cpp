@@ -26,7 +26,7 @@ TEST(TopCommand, OnlySetFieldsAreCarried) {
   m.inclination = 0.2;
   m.spin = 99.0;  // not set: ignored
   std::string error;
-  const top_sim::Command c = to_command(m, error);
+  const top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.inclination);
   EXPECT_EQ(*c.inclination, 0.2);
@@ -41,7 +41,7 @@ TEST(TopCommand, FrictionLawByName) {
   m.table_s = {0.0, 0.5, 1.0};
   m.table_mu = {0.0, 0.3, 0.2};
   std::string error;
-  top_sim::Command c = to_command(m, error);
+  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.friction);
   EXPECT_EQ(c.friction->kind, top_sim::FrictionLawKind::table);
@@ -49,36 +49,78 @@ TEST(TopCommand, FrictionLawByName) {
   EXPECT_EQ(c.friction->points[1].second, 0.3);
 
   m.table_mu.pop_back();
-  to_command(m, error);
+  to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("table_mu"), std::string::npos) << error;
 
   m.friction_law = "viscous";
-  to_command(m, error);
+  to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("friction_law = 'viscous'"), std::string::npos) << error;
 }
 
-// Every scalar parameter of the core's table reaches the law (the message's fields carry the parameters' names).
+// Every scalar parameter of the core's table reaches the law it belongs to (the message's fields carry the
+// parameters' names); the other laws' parameters keep their values in force.
 TEST(TopCommand, EveryFrictionParameterIsCarried) {
+  for (const char* law : {"paper", "linearized", "coulomb"}) {
+    top_sim::TopCommand m;
+    m.set_friction = true;
+    m.friction_law = law;
+    double value = 0.0;
+#define TOP_SIM_SET_FIELD(kind, name, range) m.name = (value += 0.125);
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_SET_FIELD)
+#undef TOP_SIM_SET_FIELD
+    std::string error;
+    const top_sim::FrictionLaw in_force;
+    const top_sim::Command c = to_command(m, in_force, error);
+    EXPECT_EQ(error, "");
+    ASSERT_TRUE(c.friction);
+    value = 0.0;
+    for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+      value += 0.125;
+      const double expected = std::string(top_sim::to_string(p.law)) == law ? value : in_force.*p.member;
+      EXPECT_EQ((*c.friction).*p.member, expected) << law << ": " << p.name;
+    }
+  }
+}
+
+// One rule with Python's apply and dynamic_reconfigure: law parameters a TopCommand does not give keep their values
+// in the law in force (the issue: {friction_law: paper, mu_c: 0.3} turned s_c into 0 and was refused).
+TEST(TopCommand, LawParametersNotGivenKeepTheLawInForce) {
+  top_sim::FrictionLaw in_force;
+  in_force.kind = top_sim::FrictionLawKind::paper;
+  in_force.mu_c = 0.25;
+  in_force.s_c = 0.45;
+  in_force.mu = 0.7;
   top_sim::TopCommand m;
   m.set_friction = true;
-  m.friction_law = "linearized";
-  double value = 0.0;
-#define TOP_SIM_SET_FIELD(kind, name, range) m.name = (value += 0.125);
-  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_SET_FIELD)
-#undef TOP_SIM_SET_FIELD
+  m.friction_law = "paper";
+  m.mu_c = 0.3;
   std::string error;
-  const top_sim::Command c = to_command(m, error);
-  EXPECT_EQ(error, "");
+  top_sim::Command c = to_command(m, in_force, error);
+  ASSERT_EQ(error, "");
   ASSERT_TRUE(c.friction);
-  value = 0.0;
-  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
-    EXPECT_EQ((*c.friction).*p.member, value += 0.125) << p.name;
-  EXPECT_EQ(c.friction->mu0, 0.375);  // the table's third parameter, by name
+  EXPECT_EQ(c.friction->mu_c, 0.3);
+  EXPECT_EQ(c.friction->s_c, 0.45) << "s_c not given: the law in force's";
+  EXPECT_EQ(top_sim::validate(*c.friction), "");
+  // A true zero is given by name: a frictionless Coulomb law.
+  top_sim::TopCommand z;
+  z.set_friction = true;
+  z.friction_law = "coulomb";
+  z.friction_given = {"mu"};
+  c = to_command(z, in_force, error);
+  ASSERT_EQ(error, "");
+  EXPECT_EQ(c.friction->kind, top_sim::FrictionLawKind::coulomb);
+  EXPECT_EQ(c.friction->mu, 0.0);
+  z.friction_given.clear();  // nothing given: Coulomb with the mu in force
+  c = to_command(z, in_force, error);
+  EXPECT_EQ(c.friction->mu, 0.7);
+  z.friction_given = {"mu_c"};
+  to_command(z, in_force, error);
+  EXPECT_EQ(error, "friction_given: 'mu_c': the coulomb law reads mu");
 }
 
 TEST(TopCommand, EmptyCommandIsReported) {
   std::string error;
-  to_command(top_sim::TopCommand(), error);
+  to_command(top_sim::TopCommand(), top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("no field is set"), std::string::npos) << error;
 }
 
@@ -434,7 +476,7 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   m.static_friction = 0.4;
   m.restitution = 0.7;  // not set: ignored
   std::string error;
-  top_sim::Command c = to_command(m, error);
+  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.static_friction);
   EXPECT_EQ(*c.static_friction, 0.4);
@@ -444,7 +486,7 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   m.set_static_friction = false;
   m.set_restitution = true;
   m.restitution = 1.5;  // out of [0, 1]: the adapter carries it, the core's validation rejects it
-  c = to_command(m, error);
+  c = to_command(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.restitution);
   EXPECT_EQ(*c.restitution, 1.5);

@@ -312,7 +312,7 @@ class BagTool(unittest.TestCase):
             self.assertEqual(p.returncode, status, '%s: %s' % (args, p.stderr))
             self.assertIn(words, p.stderr, args)
         p = self.run_tool(two, '--top', 'nope')
-        for known in ('top_sim (/top_sim/top_state)', 'spinner (/top_sim/spinner/top_state)'):
+        for known in ('top (/top_sim/top_state)', 'spinner (/top_sim/spinner/top_state)'):
             self.assertIn(known, p.stderr)
 
 
