@@ -6,6 +6,12 @@ install(TARGETS top_sim_core EXPORT top_sim_core_targets
   INCLUDES DESTINATION ${TOP_SIM_INSTALL_INCLUDE})
 install(TARGETS top_sim_cli_common ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB} LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB})
 install(TARGETS top_sim_run top_sim_sweep top_sim_study top_sim_stability RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
+if(TARGET top_sim_lcm_echo)
+  install(TARGETS top_sim_lcm_echo RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
+  if(NOT TOP_SIM_ROS)  # the catkin build installs the library with the node (cmake/ros.cmake)
+    install(TARGETS top_sim_lcm LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB} ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB})
+  endif()
+endif()
 install(DIRECTORY include/top_sim/ DESTINATION ${TOP_SIM_INSTALL_INCLUDE}/top_sim)
 install(DIRECTORY config DESTINATION ${TOP_SIM_INSTALL_SHARE})
 # top_sim_stability --plot finds its script at share/top_sim/plots (next to config/).

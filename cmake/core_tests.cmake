@@ -13,6 +13,12 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep top_sim_fit top_sim_stability)  # the CLI tests run them
   add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
 
+  # The LCM stream as top_sim_lcm_echo prints it: every field of lcm/top_state_t.lcm (multicast route needed).
+  if(TARGET top_sim_lcm_echo)
+    add_test(NAME lcm_echo COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test/lcm_echo_test.sh
+      $<TARGET_FILE:top_sim_run> $<TARGET_FILE:top_sim_lcm_echo> ${CMAKE_CURRENT_SOURCE_DIR})
+  endif()
+
   # No function over 60 lines without a reason in its comment (scripts/check_function_length.py).
   find_package(Python3 COMPONENTS Interpreter REQUIRED)
   add_test(NAME function_length COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_function_length.py)

@@ -119,7 +119,7 @@ void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, do
         std::cerr << "top_sim_run: caught up at t = " << s.t << " s\n";
     }
     static bool warned = false;  // one message, not one per sample
-    if (!lcm.publish(s, pacer->achieved_factor()) && !warned && (warned = true))
+    if (!lcm.publish(s, {pacer->achieved_factor(), 1.0, false}) && !warned && (warned = true))
       std::cerr << "top_sim_run: LCM publish on " << channel << " failed at t = " << s.t << " s\n";
     if (write_csv) write_csv(s);
   };

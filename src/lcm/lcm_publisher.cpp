@@ -25,7 +25,7 @@ static_assert(top_state_t::SLIPPING == top_sim::code(top_sim::ContactMode::slipp
 static_assert(top_state_t::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "top_state_t mode code");
 static_assert(top_state_t::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "top_state_t mode code");
 
-void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out) {
+void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state_t& out) {
   out.utime = static_cast<int64_t>(std::llround(s.t * 1e6));
   out.alpha = s.alpha;
   copy3(s.com, out.position);
@@ -50,13 +50,16 @@ void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_st
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;
   out.regime = static_cast<int8_t>(top_sim::code(s.regime));
+  out.regime_name = top_sim::to_string(s.regime);
   out.contact_mode = static_cast<int8_t>(top_sim::code(s.contact_mode));
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
   out.gap = s.gap;
   out.energy = s.energy;
   out.dissipated_work = s.dissipated_work;
   out.energy_balance_residual = s.energy_balance_residual;
-  out.real_time_factor = real_time_factor;
+  out.real_time_factor = pacing.achieved;
+  out.requested_real_time_factor = pacing.requested;
+  out.paused = pacing.paused;
   out.fault = s.fault_message;
 }
 
@@ -70,10 +73,10 @@ Publisher::Publisher(const std::string& url, const std::string& channel) : chann
 
 Publisher::~Publisher() = default;
 
-bool Publisher::publish(const top_sim::Snapshot& s, double real_time_factor) {
+bool Publisher::publish(const top_sim::Snapshot& s, const Pacing& pacing) {
   if (!ok_) return false;
   top_sim::top_state_t msg;
-  to_lcm(s, real_time_factor, msg);
+  to_lcm(s, pacing, msg);
   return lcm_->publish(channel_, &msg) == 0;
 }
 

@@ -11,8 +11,15 @@ namespace top_sim { class top_state_t; }
 
 namespace top_sim_lcm {
 
-// Field-by-field copy of the snapshot; real_time_factor is the adapter's achieved pacing.
-void to_lcm(const top_sim::Snapshot& s, double real_time_factor, top_sim::top_state_t& out);
+// What the streaming adapter adds to a snapshot (TopState's real_time_factor, requested_real_time_factor, paused).
+struct Pacing {
+  double achieved = 0.0;   // simulated seconds per wall second
+  double requested = 1.0;  // 0 = as fast as possible
+  bool paused = false;
+};
+
+// Field-by-field copy of the snapshot and the pacing.
+void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state_t& out);
 
 // Opens one LCM instance; when it cannot (e.g. no multicast route) ok() is false and error() says why.
 class Publisher {
@@ -23,7 +30,7 @@ class Publisher {
   const std::string& error() const { return error_; }
   const std::string& channel() const { return channel_; }
   // Returns false when the send failed (nothing else happens: the caller keeps running).
-  bool publish(const top_sim::Snapshot& s, double real_time_factor);
+  bool publish(const top_sim::Snapshot& s, const Pacing& pacing);
 
  private:
   std::unique_ptr<lcm::LCM> lcm_;

@@ -95,7 +95,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
     const ros::Time stamp = this->stamp(top);
     update_trail(top, s, stamp);
     add_transforms(top, s, stamp, tf);
-    if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor());
+    if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), requested_factor, paused);
     const bool subscribed = *top.output.state_subscribers > 0;
     if (!subscribed && !array) continue;  // a message nobody reads is not built (thousands of tops)
     top_sim::TopState msg;
@@ -255,15 +255,18 @@ void StateOutput::trim_trail(nav_msgs::Path& path) const {
   if (stale > 0) poses.erase(poses.begin(), poses.begin() + stale);
 }
 
-void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor) {
+void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor,
+                              bool paused) {
 #ifdef TOP_SIM_HAVE_LCM
-  if (lcm_ && !lcm_->publish(s, achieved_factor) && !lcm_send_failed_) {
+  if (lcm_ && !lcm_->publish(s, {achieved_factor, requested_factor, paused}) && !lcm_send_failed_) {
     ROS_ERROR("top_sim_node: LCM publish on %s failed (reported once)", lcm_->channel().c_str());
     lcm_send_failed_ = true;
   }
 #else
   (void)s;
   (void)achieved_factor;
+  (void)requested_factor;
+  (void)paused;
 #endif
 }
 

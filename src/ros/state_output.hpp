@@ -53,7 +53,7 @@ class StateOutput {
   void update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp);
   void trim_trail(nav_msgs::Path& path) const;
   void thin_trail(nav_msgs::Path& path) const;
-  void publish_lcm(const top_sim::Snapshot& s, double achieved_factor);
+  void publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor, bool paused);
   void open_lcm();
 
   NodeParameters params_;
