@@ -24,8 +24,11 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
   add_test(NAME function_length COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/scripts/check_function_length.py)
 
   # Another CMake project links the installed core through find_package(top_sim_core).
+  # The installed tools and Python module run in a clean environment (env -i): RPATH and install layout.
   add_test(NAME install_and_find_package COMMAND ${CMAKE_COMMAND}
     -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}
+    -DPYTHON_MODULE=$<TARGET_EXISTS:top_sim_python> -DINSTALL_BIN=${TOP_SIM_INSTALL_BIN}
+    -DINSTALL_PYTHON=${TOP_SIM_INSTALL_PYTHON}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)
 endif()
 

@@ -19,6 +19,11 @@ else()
   enable_testing()
   # JUnit XML of every plain-build test suite goes here (scripts/test.sh counts the cases).
   set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
+  # Installed binaries find the installed libraries relative to themselves (a clean environment, any prefix).
+  file(RELATIVE_PATH TOP_SIM_BIN_TO_LIB /${TOP_SIM_INSTALL_BIN} /${TOP_SIM_INSTALL_LIB})
+  set(CMAKE_INSTALL_RPATH "$ORIGIN/${TOP_SIM_BIN_TO_LIB}")
+  # The Python module's install directory: PYTHONPATH=<prefix>/lib/python3/dist-packages (Debian's layout).
+  set(TOP_SIM_INSTALL_PYTHON ${TOP_SIM_INSTALL_LIB}/python3/dist-packages)
 endif()
 set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)

@@ -9,8 +9,10 @@ set(PYBIND11_FINDPYTHON ON)
 find_package(pybind11 CONFIG REQUIRED)
 pybind11_add_module(top_sim_python src/python/top_sim_module.cpp)
 target_link_libraries(top_sim_python PRIVATE top_sim_core)
+file(RELATIVE_PATH _python_to_lib /${TOP_SIM_INSTALL_PYTHON} /${TOP_SIM_INSTALL_LIB})
 set_target_properties(top_sim_python PROPERTIES OUTPUT_NAME top_sim
-  LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/python)
+  LIBRARY_OUTPUT_DIRECTORY ${PROJECT_BINARY_DIR}/python INSTALL_RPATH "$ORIGIN/${_python_to_lib}")
+install(TARGETS top_sim_python LIBRARY DESTINATION ${TOP_SIM_INSTALL_PYTHON})
 
 if(TOP_SIM_TESTS)
   add_test(NAME python_tests

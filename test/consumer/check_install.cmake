@@ -26,3 +26,14 @@ string(FIND "${out}" "config ${expected}" at)
 if(at EQUAL -1)
   message(FATAL_ERROR "consumer read its data from elsewhere than ${expected}")
 endif()
+
+# The installed tool in a clean environment (no LD_LIBRARY_PATH, no PATH): its RPATH finds libtop_sim_core.so.
+run_step(env -i ${prefix}/${INSTALL_BIN}/top_sim_run ${prefix}/share/top_sim/config/scenes/default.yaml
+         --duration 0.05 --quiet)
+# The installed Python module from its documented place, equally clean.
+if(PYTHON_MODULE)
+  # (a script file: a `;` in a -c argument would split it as a CMake list)
+  file(WRITE ${consumer_build}/import_top_sim.py
+       "import top_sim\ntop_sim.Simulator('default').run(0.01)\nprint('top_sim module from', top_sim.__file__)\n")
+  run_step(env -i PYTHONPATH=${prefix}/${INSTALL_PYTHON} /usr/bin/python3 ${consumer_build}/import_top_sim.py)
+endif()
