@@ -9,8 +9,14 @@ target_link_libraries(top_sim_core PUBLIC Eigen3::Eigen Boost::headers yaml-cpp 
 target_compile_definitions(top_sim_core PRIVATE TOP_SIM_DATA_SUBDIR="share/${PROJECT_NAME}/config")
 set_target_properties(top_sim_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
-add_library(top_sim_cli_common src/cli/run_output.cpp)
-target_link_libraries(top_sim_cli_common PUBLIC top_sim_core)
+# What every tool writes (CSV, summary, plots) and reads (arguments): top_sim_run, top_sim_bag, the CLI tools.
+# ROS-free, above the core; the tools are thin adapters over both (docs/architecture.md).
+add_library(top_sim_output src/output/run_output.cpp src/output/plot.cpp)
+target_include_directories(top_sim_output PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/output)
+target_link_libraries(top_sim_output PUBLIC top_sim_core)
+
+add_library(top_sim_cli_common src/cli/sweep_point.cpp src/cli/fit_data.cpp)
+target_link_libraries(top_sim_cli_common PUBLIC top_sim_output)
 
 add_executable(top_sim_run src/cli/top_sim_run.cpp)
 target_link_libraries(top_sim_run top_sim_cli_common)

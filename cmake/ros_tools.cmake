@@ -18,8 +18,8 @@ install(TARGETS top_sim_teleop RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINAT
 # in scripts/lib.sh's package list; record.test runs it).
 find_package(rosbag_storage REQUIRED)
 add_executable(top_sim_bag src/ros/top_sim_bag.cpp)
-target_include_directories(top_sim_bag PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli ${rosbag_storage_INCLUDE_DIRS})
-target_link_libraries(top_sim_bag top_sim_ros top_sim_cli_common ${rosbag_storage_LIBRARIES})
+target_include_directories(top_sim_bag PRIVATE ${rosbag_storage_INCLUDE_DIRS})
+target_link_libraries(top_sim_bag top_sim_ros top_sim_output ${rosbag_storage_LIBRARIES})
 install(TARGETS top_sim_bag RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(FILES scripts/plots/trajectory.py DESTINATION ${TOP_SIM_INSTALL_SHARE}/plots)  # plotlib.py: tools.cmake
 

@@ -1,16 +1,12 @@
 # ROS-free tools that reproduce the paper: top_sim_sweep (grid over alpha -> CSV), top_sim_stability.
 find_package(Threads REQUIRED)
 
-# The per-point sweep logic lives in the shared CLI library so the paper tests run the same code.
-target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/sweep_point.cpp
-  ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/plot.cpp)  # --plot of top_sim_fit and top_sim_stability
-
+# The per-point sweep logic lives in the shared CLI library (cmake/core.cmake) so the paper tests run the same code.
 add_executable(top_sim_sweep src/cli/top_sim_sweep.cpp)
 target_link_libraries(top_sim_sweep top_sim_cli_common Threads::Threads)
 
 # top_sim_fit: friction-law fits (docs/analysis.md). Its --plot script is found in share/top_sim/plots, a link to
 # scripts/plots in the build tree as config/ is (cmake/layout.cmake).
-target_sources(top_sim_cli_common PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src/cli/fit_data.cpp)
 add_executable(top_sim_fit src/cli/top_sim_fit.cpp)
 target_link_libraries(top_sim_fit top_sim_cli_common)
 if(NOT EXISTS ${TOP_SIM_BUILD_SHARE}/plots)
