@@ -73,6 +73,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
+  add_rostest(test/ros/docs_commands.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/reset_start.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.
   # Its own timeout: the script stops and removes what it started on TERM.
