@@ -38,15 +38,31 @@ install(TARGETS top_sim_ros top_sim_node
   LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION}
   RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(DIRECTORY launch lcm DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
+
+# The rviz control panel (docs/ros.md, "Control in rviz"): its Qt-free logic and the rviz plugin (librviz-dev).
+find_package(rviz REQUIRED)
+find_package(pluginlib REQUIRED)
+find_package(Qt5 REQUIRED COMPONENTS Widgets)
+add_library(top_sim_panel_logic src/rviz/panel_logic.cpp)
+target_include_directories(top_sim_panel_logic PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/rviz)
+target_link_libraries(top_sim_panel_logic PUBLIC top_sim_ros)
+add_library(top_sim_rviz src/rviz/control_panel.cpp src/rviz/control_panel.hpp)
+set_target_properties(top_sim_rviz PROPERTIES AUTOMOC ON)
+target_include_directories(top_sim_rviz PUBLIC ${rviz_INCLUDE_DIRS} ${pluginlib_INCLUDE_DIRS})
+target_link_libraries(top_sim_rviz top_sim_panel_logic ${rviz_LIBRARIES} ${pluginlib_LIBRARIES} Qt5::Widgets)
+install(TARGETS top_sim_panel_logic top_sim_rviz
+  ARCHIVE DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION} LIBRARY DESTINATION ${CATKIN_PACKAGE_LIB_DESTINATION})
+install(FILES plugin_description.xml DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION})
 install(DIRECTORY rviz DESTINATION ${CATKIN_PACKAGE_SHARE_DESTINATION} OPTIONAL)
 
 # rostests of the node (test/ros/*.test) and unit tests of its message maps.
 if(CATKIN_ENABLE_TESTING)
   find_package(rostest REQUIRED)
   find_package(tf2_msgs REQUIRED)
-  catkin_add_gtest(top_sim_ros_unit_tests test/ros/test_conversions.cpp test/ros/test_node_parts.cpp)
+  catkin_add_gtest(top_sim_ros_unit_tests test/ros/test_conversions.cpp test/ros/test_node_parts.cpp
+    test/ros/test_panel_logic.cpp)
   if(TARGET top_sim_ros_unit_tests)
-    target_link_libraries(top_sim_ros_unit_tests top_sim_ros)
+    target_link_libraries(top_sim_ros_unit_tests top_sim_ros top_sim_panel_logic)
     target_compile_definitions(top_sim_ros_unit_tests PRIVATE
       TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
   endif()
@@ -73,6 +89,9 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
+  add_rostest_gtest(top_sim_panel_test test/ros/panel.test test/ros/test_panel_widget.cpp)
+  target_link_libraries(top_sim_panel_test top_sim_rviz ${catkin_LIBRARIES})
+  add_dependencies(top_sim_panel_test top_sim_node ${PROJECT_NAME}_generate_messages_cpp)
   add_rostest(test/ros/docs_commands.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/reset_start.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   # Two hosts as network namespaces on one master (docs/ros.md Distribution); one skipped case without root.

@@ -1,0 +1,130 @@
+#include "panel_logic.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "conversions.hpp"
+#include "markers.hpp"
+#include "top_sim/command.hpp"
+#include "top_sim/format.hpp"
+#include "top_sim/friction.hpp"
+#include "top_sim/model.hpp"
+
+namespace top_sim_rviz {
+
+namespace {
+
+// "" or "FIELD = 'TEXT': must be a number" (the whole text, as std::stod would silently stop at "0.2x").
+std::string parse_number(const std::string& field, const std::string& text, double& value) {
+  std::size_t used = 0;
+  try {
+    value = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) return field + " = '" + text + "': must be a number";
+  return "";
+}
+
+bool blank(const std::string& text) { return text.find_first_not_of(" \t") == std::string::npos; }
+
+// The friction fields as the TopCommand's law and given parameters, the law checked by the core.
+std::string friction_command(const PanelFields& f, top_sim::TopCommand& out) {
+  top_sim::FrictionLawKind kind;
+  if (!top_sim::parse_friction_law_kind(f.friction_law, kind) || kind == top_sim::kFrictionPointsLaw)
+    return "friction law = '" + f.friction_law + "': must be one of " + top_sim::friction_law_names(", ") +
+           " but table (its points come from a scene)";
+  out.set_friction = true;
+  out.friction_law = f.friction_law;
+  top_sim::FrictionLaw law;  // checks the given values; the others are the node's
+  law.kind = kind;
+  for (const auto& [name, text] : f.friction) {
+    if (blank(text)) continue;
+    const top_sim::FrictionParameter* p = top_sim::find_friction_parameter(name);
+    if (p == nullptr || p->law != kind)
+      return name + ": the " + f.friction_law + " law reads " + top_sim::friction_parameter_names(kind);
+    double v = 0.0;
+    const std::string error = parse_number(name, text, v);
+    if (!error.empty()) return error;
+    law.*(p->member) = v;
+    out.friction_given.push_back(name);
+#define TOP_SIM_SET_FIELD(kind_, field, range_) \
+    if (name == #field) out.field = v;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_SET_FIELD)
+#undef TOP_SIM_SET_FIELD
+  }
+  return top_sim::validate(law);
+}
+
+}  // namespace
+
+std::string top_name_of(const std::string& node, const std::string& top, const std::string& leaf) {
+  std::string base = node.empty() || node.back() != '/' ? node : node.substr(0, node.size() - 1);
+  if (!top.empty() && top != kLaunchTopName) base += "/" + top;
+  return base + "/" + leaf;
+}
+
+std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
+  out = top_sim::TopCommand();
+  top_sim::Command check;
+  double v = 0.0;
+  if (!blank(f.inclination)) {
+    std::string error = parse_number("inclination", f.inclination, v);
+    if (!error.empty()) return error;
+    out.set_inclination = true;
+    out.inclination = v;
+    check.inclination = v;
+  }
+  if (!blank(f.spin)) {
+    std::string error = parse_number("spin", f.spin, v);
+    if (!error.empty()) return error;
+    out.set_spin = true;
+    out.spin = v;
+    check.spin = v;
+  }
+  const std::string error = top_sim::validate(check, top_sim::Model());
+  if (!error.empty()) return error;
+  if (!blank(f.friction_law)) return friction_command(f, out);
+  if (!out.set_inclination && !out.set_spin) return "nothing to apply: inclination, spin and friction law are empty";
+  return "";
+}
+
+// The laws with scalar parameters, in the core's table order (the table law has none: it needs points).
+std::vector<std::string> law_names() {
+  std::vector<std::string> names;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+    const std::string name = top_sim::to_string(p.law);
+    if (names.empty() || names.back() != name) names.push_back(name);
+  }
+  return names;
+}
+
+std::vector<std::string> law_parameters(const std::string& law) {
+  std::vector<std::string> names;
+  top_sim::FrictionLawKind kind;
+  if (!top_sim::parse_friction_law_kind(law, kind)) return names;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
+    if (p.law == kind) names.push_back(p.name);
+  return names;
+}
+
+std::string status_line(const top_sim::TopState& s) {
+  std::string error;
+  const top_sim::Snapshot snapshot = top_sim_ros::to_snapshot(s, error);
+  std::string line = error.empty() ? top_sim_ros::status_text("", snapshot) : "state not readable: " + error;
+  char pacing[96];
+  std::snprintf(pacing, sizeof pacing, " | real time x%.2f of %s", s.real_time_factor,
+                s.requested_real_time_factor > 0.0 ? top_sim::format_number(s.requested_real_time_factor).c_str()
+                                                   : "as fast as possible");
+  return line + pacing + (s.paused ? " | paused" : "");
+}
+
+std::string parse_real_time_factor(const std::string& text, double& value) {
+  const std::string error = parse_number("real_time_factor", text, value);
+  if (!error.empty()) return error + " >= 0 (0 = as fast as possible)";
+  if (!std::isfinite(value) || value < 0.0)
+    return top_sim::range_message("real_time_factor", value, ">= 0 and finite (0 = as fast as possible)");
+  return "";
+}
+
+}  // namespace top_sim_rviz

@@ -1,0 +1,44 @@
+// The rviz control panel's logic, without Qt (docs/ros.md, "Control in rviz"): topic and service names of a top,
+// field text -> the node's TopCommand with the core's validation, a top's state -> the status line. The widget
+// (control_panel.hpp) only moves text between these functions and the node's topics and services.
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "top_sim/TopCommand.h"
+#include "top_sim/TopState.h"
+
+namespace top_sim_rviz {
+
+constexpr const char* kLaunchTopName = "top";  // the node's name for its launch-time top
+
+// A top's topic or service: "/top_sim" + "top" + "inclination" -> "/top_sim/inclination" (the launch-time top
+// keeps the node's names), "/top_sim" + "b" -> "/top_sim/b/inclination".
+std::string top_name_of(const std::string& node, const std::string& top, const std::string& leaf);
+
+// What the panel's motion and friction fields hold, as typed; an empty field is not sent.
+struct PanelFields {
+  std::string inclination, spin;               // [rad], [rad/s]
+  std::string friction_law;                    // "" = keep the law; else one of law_names()
+  std::map<std::string, std::string> friction;  // parameter name -> text; empty texts keep the law in force's
+};
+
+// The fields as one TopCommand, checked with the core's rules (top_sim::validate of a Command and of a friction
+// law); "" or an error naming the field, the text and the allowed range. Law parameters left empty are not given:
+// the node keeps their values in force (TopCommand.friction_given).
+std::string to_command(const PanelFields& fields, top_sim::TopCommand& out);
+
+// The laws a panel offers and the parameters each reads (the core's tables; the table law needs points, which a
+// panel field cannot carry, so it is not offered).
+std::vector<std::string> law_names();
+std::vector<std::string> law_parameters(const std::string& law);
+
+// "sleeping, slipping, phi 0.270 / phi* 0.270 | real time x0.98 of 1" (paused, fault shown when so).
+std::string status_line(const top_sim::TopState& s);
+
+// A real-time factor typed in the panel: "" or the error (>= 0 and finite, 0 = as fast as possible).
+std::string parse_real_time_factor(const std::string& text, double& value);
+
+}  // namespace top_sim_rviz
