@@ -8,6 +8,7 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollArea>
 #include <QVBoxLayout>
 #include <fstream>
 #include <sstream>
@@ -262,7 +263,10 @@ ControlPanel::ControlPanel(QWidget* parent) : rviz::Panel(parent) {
   row->addWidget(node_);
   layout->addLayout(row);
   widget_ = new ControlWidget(this);
-  layout->addWidget(widget_);
+  auto* scroll = new QScrollArea(this);  // the dock may be shorter than the panel: scroll, do not grow the window
+  scroll->setWidget(widget_);
+  scroll->setWidgetResizable(true);
+  layout->addWidget(scroll);
   connect(node_, &QLineEdit::editingFinished, this, [this] {
     widget_->set_node(node_->text().trimmed().toStdString());
     Q_EMIT configChanged();
