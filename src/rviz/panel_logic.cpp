@@ -127,4 +127,18 @@ std::string parse_real_time_factor(const std::string& text, double& value) {
   return "";
 }
 
+std::string inclination_from_ring(double alpha_now, double w, double x, double, double, double& alpha) {
+  alpha = alpha_now + 2.0 * std::atan2(x, w);  // swing-twist: the twist of the turn about x
+  top_sim::Command c;
+  c.inclination = alpha;
+  return top_sim::validate(c, top_sim::Model());
+}
+
+std::string spin_from_handle(double spin_now, double drag, double& spin) {
+  spin = spin_now + kSpinPerMetre * drag;
+  top_sim::Command c;
+  c.spin = spin;
+  return top_sim::validate(c, top_sim::Model());
+}
+
 }  // namespace top_sim_rviz

@@ -41,4 +41,14 @@ std::string status_line(const top_sim::TopState& s);
 // A real-time factor typed in the panel: "" or the error (>= 0 and finite, 0 = as fast as possible).
 std::string parse_real_time_factor(const std::string& text, double& value);
 
+// The interactive markers (top_sim_interactive): a ring about the plane's x axis tilts the plane, a handle along
+// the plane's normal sets the spin. Both return "" or the core's error for the resulting value (nothing is sent).
+constexpr double kSpinPerMetre = 2000.0;  // spin handle: 1 cm of drag changes the spin by 20 rad/s
+
+// The ring turned by the unit quaternion (w, x, y, z) from its rest pose: alpha = alpha_now + its angle about x
+// (the part of the turn about the plane's x axis; a turn about other axes does not tilt the plane).
+std::string inclination_from_ring(double alpha_now, double w, double x, double y, double z, double& alpha);
+// The handle dragged `drag` metres along the normal: spin = spin_now + kSpinPerMetre * drag.
+std::string spin_from_handle(double spin_now, double drag, double& spin);
+
 }  // namespace top_sim_rviz

@@ -59,6 +59,25 @@ TEST(PanelLogic, LawsAndParametersComeFromTheCoreTables) {
   EXPECT_EQ(top_sim_rviz::law_parameters("paper"), (std::vector<std::string>{"mu_c", "s_c"}));
 }
 
+// The ring's turn about the plane's x axis adds to alpha; the other parts of a turn do not; the result is checked
+// by the core (|alpha| < pi/2). The spin handle's scale: 1 cm = 20 rad/s.
+TEST(PanelLogic, RingTiltsAndHandleSpins) {
+  double alpha = 0.0;
+  const double h = 0.5 * 0.1;  // a turn of 0.1 rad about x
+  EXPECT_EQ(top_sim_rviz::inclination_from_ring(0.1, std::cos(h), std::sin(h), 0.0, 0.0, alpha), "");
+  EXPECT_NEAR(alpha, 0.2, 1e-12);
+  const double g = 0.5 * 0.3;  // about z only: no tilt
+  EXPECT_EQ(top_sim_rviz::inclination_from_ring(0.1, std::cos(g), 0.0, 0.0, std::sin(g), alpha), "");
+  EXPECT_NEAR(alpha, 0.1, 1e-12);
+  const double big = 0.5 * 1.5;
+  EXPECT_NE(top_sim_rviz::inclination_from_ring(0.1, std::cos(big), std::sin(big), 0.0, 0.0, alpha)
+                .find("must be finite with |alpha| < pi/2"), std::string::npos);
+  double spin = 0.0;
+  EXPECT_EQ(top_sim_rviz::spin_from_handle(200.0, 0.01, spin), "");
+  EXPECT_NEAR(spin, 220.0, 1e-9);
+  EXPECT_NE(top_sim_rviz::spin_from_handle(200.0, 1000.0, spin).find("spin = 2000200"), std::string::npos);
+}
+
 TEST(PanelLogic, StatusLineShowsRegimeModePhiAndPacing) {
   top_sim::TopState s;
   s.regime = top_sim::TopState::SLEEPING;
