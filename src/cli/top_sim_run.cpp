@@ -156,7 +156,6 @@ bool open_csv(const std::string& path, double duration, double rate, std::ofstre
     std::cerr << "top_sim_run: --csv = '" << path << "': cannot open for writing\n";
     return false;
   }
-  top_sim::write_csv_header(csv);
   return true;
 }
 
@@ -208,7 +207,11 @@ int main(int argc, char** argv) {
   opt.duration = duration;
   if (args.progress || (!args.quiet && isatty(STDERR_FILENO))) opt.on_progress = progress_printer(sim.time(), duration);
   opt.sample_rate = args.rate;  // the summary's regime_seconds come from the samples too
-  if (csv.is_open()) opt.on_sample = [&csv](const Snapshot& s) { write_csv_row(csv, s); };
+  CsvWriter rows(csv);
+  if (csv.is_open()) {
+    rows.header();
+    opt.on_sample = [&rows](const Snapshot& s) { rows.row(s); };
+  }
 #ifdef TOP_SIM_HAVE_LCM
   std::unique_ptr<top_sim_lcm::Publisher> lcm;
   if (!args.lcm_url.empty()) {
@@ -223,6 +226,7 @@ int main(int argc, char** argv) {
   const RunResult r = run(sim, opt);
   if (opt.on_progress && isatty(STDERR_FILENO)) std::cerr << "\n";
   // Output errors surface after the simulation: exit 1 (the result could not be delivered).
+  rows.flush();
   const bool written = csv_written(args.csv_path, csv) &&
                        write_text_file("top_sim_run", "--summary", args.summary_path, summary_json(scene, r));
   if (args.summary_path != "-") print_result(scene, r);

@@ -1,5 +1,7 @@
 #include "run_output.hpp"
 
+#include <charconv>
+
 #include <algorithm>
 #include <cmath>
 #include <ctime>
@@ -225,20 +227,35 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   return r;
 }
 
-void write_csv_header(std::ostream& os) {
+CsvWriter::CsvWriter(std::ostream& os) : os_(os) { buf_.reserve(kBlock + 4096); }
+
+void CsvWriter::header() {
   const char* sep = "";
-  for (const TrajectoryColumn& c : trajectory_columns()) os << std::exchange(sep, ",") << c.name;
-  os << '\n';
+  for (const TrajectoryColumn& c : trajectory_columns()) buf_.append(std::exchange(sep, ",")).append(c.name);
+  buf_ += '\n';
 }
 
-void write_csv_row(std::ostream& os, const Snapshot& s) {
-  os << std::setprecision(12);
-  const char* sep = "";
+void CsvWriter::row(const Snapshot& s) {
+  char number[32];
+  bool first = true;
   for (const TrajectoryColumn& c : trajectory_columns()) {
-    os << std::exchange(sep, ",");
-    if (c.text) os << c.text(s); else os << c.value(s);
+    if (!first) buf_ += ',';
+    first = false;
+    if (c.text) {
+      buf_.append(c.text(s));
+      continue;
+    }
+    const auto r = std::to_chars(number, number + sizeof number, c.value(s), std::chars_format::general, 12);
+    buf_.append(number, r.ptr);
   }
-  os << '\n';
+  buf_ += '\n';
+  if (buf_.size() >= kBlock) flush();
+}
+
+void CsvWriter::flush() {
+  if (buf_.empty()) return;
+  os_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
+  buf_.clear();
 }
 
 bool write_text_file(const std::string& tool, const std::string& flag, const std::string& path,

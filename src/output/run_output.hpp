@@ -84,8 +84,23 @@ RunResult run(Simulator& sim, const RunOptions& options);
 // CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
 double thread_cpu_seconds();
 
-void write_csv_header(std::ostream& os);
-void write_csv_row(std::ostream& os, const Snapshot& s);
+// The trajectory CSV (docs/interfaces.md): rows formatted into a buffer with std::to_chars (the text of printf's
+// %.12g, as the stream formatting before it) and written a block at a time; flush() before checking the stream.
+class CsvWriter {
+ public:
+  explicit CsvWriter(std::ostream& os);
+  ~CsvWriter() { flush(); }
+  CsvWriter(const CsvWriter&) = delete;
+  CsvWriter& operator=(const CsvWriter&) = delete;
+  void header();
+  void row(const Snapshot& s);
+  void flush();
+
+ private:
+  static constexpr std::size_t kBlock = 1 << 16;  // bytes per write
+  std::ostream& os_;
+  std::string buf_;
+};
 
 // The JSON summary of docs/interfaces.md.
 std::string summary_json(const Scene& scene, const RunResult& r);

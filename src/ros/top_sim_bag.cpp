@@ -279,8 +279,9 @@ bool summarise(rosbag::Bag& bag, const Top& top, const Arguments& args, const to
     csv.open(data);
     if (!csv) std::cerr << kTool << ": --csv = '" << data << "': cannot open for writing\n";
     ok = csv.is_open();
-    if (ok) top_sim::write_csv_header(csv);
   }
+  top_sim::CsvWriter rows(csv);
+  if (csv.is_open()) rows.header();
   top_sim::SummaryAccumulator acc(top_sim::mark_time(t_first, t_last));
   top_sim::RecordedSource src;
   src.bag = args.bag;
@@ -289,11 +290,12 @@ bool summarise(rosbag::Bag& bag, const Top& top, const Arguments& args, const to
   src.scene = scene;
   src.skipped = for_each_state(bag, top.topic, args, [&](const top_sim::Snapshot& s) {
     acc.add(s);
-    if (csv.is_open()) top_sim::write_csv_row(csv, s);
+    if (csv.is_open()) rows.row(s);
   });
   const top_sim::SampledSummary s = acc.result();
   set_phi_star(scene, s.last, src);
   if (csv.is_open()) {
+    rows.flush();
     csv.close();
     if (!csv) std::cerr << kTool << ": --csv = '" << data << "': writing failed (disk full?)\n";
     ok = static_cast<bool>(csv);

@@ -5,10 +5,14 @@
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
 #include <cmath>
+#include <iomanip>
+#include <limits>
 #include <sstream>
+#include <utility>
 
 #include "test_util.hpp"
 #include "top_sim/plane.hpp"
+#include "top_sim/trajectory.hpp"
 
 namespace pt = boost::property_tree;
 using top_sim::ContactMode;
@@ -144,4 +148,40 @@ TEST(SummaryAccumulator, SampledRunCoversTheRunAndAgreesWithTheExactMark) {
   const pt::ptree k = parse(top_sim::summary_json(sim.scene(), top_sim::run(unsampled, opt)));
   EXPECT_EQ(k.get<std::string>("regime_seconds"), "null");
   EXPECT_FALSE(k.get<std::string>("unavailable.regime_seconds").empty());
+}
+
+// The CSV writer's text is the stream formatting it replaced (%.12g per number, names for enumerations), byte for
+// byte, for ordinary, tiny, huge, negative, NaN and infinite values, over more rows than one block.
+TEST(CsvWriter, RowsAreTheStreamFormattingByteForByte) {
+  using namespace top_sim;
+  std::vector<Snapshot> rows;
+  Simulator sim(load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml"));
+  for (int k = 0; k < 3000; ++k) {
+    ASSERT_TRUE(sim.advance_to(1e-3 * (k + 1)));
+    rows.push_back(sim.snapshot());
+  }
+  rows[7].gap = 1e-300;
+  rows[8].energy = -1.5e300;
+  rows[9].slip = std::numeric_limits<double>::quiet_NaN();
+  rows[10].mu = -std::numeric_limits<double>::infinity();
+  std::ostringstream expected;
+  const char* sep = "";
+  for (const TrajectoryColumn& c : trajectory_columns()) expected << std::exchange(sep, ",") << c.name;
+  expected << '\n' << std::setprecision(12);
+  for (const Snapshot& s : rows) {
+    sep = "";
+    for (const TrajectoryColumn& c : trajectory_columns()) {
+      expected << std::exchange(sep, ",");
+      if (c.text) expected << c.text(s); else expected << c.value(s);
+    }
+    expected << '\n';
+  }
+  std::ostringstream written;
+  {
+    CsvWriter w(written);
+    w.header();
+    for (const Snapshot& s : rows) w.row(s);
+  }
+  EXPECT_GT(written.str().size(), 65536u) << "more than one block";
+  EXPECT_EQ(written.str(), expected.str());
 }
