@@ -24,6 +24,15 @@ using visualization_msgs::InteractiveMarker;
 using visualization_msgs::InteractiveMarkerControl;
 using visualization_msgs::InteractiveMarkerFeedback;
 
+// Where the controls rest in the top's contact frame: beside the top (plane +x), small, not over its body or label.
+geometry_msgs::Pose rest_pose() {
+  geometry_msgs::Pose p;
+  p.position.x = 0.05;
+  p.position.z = 0.03;
+  p.orientation.w = 1.0;
+  return p;
+}
+
 InteractiveMarkerControl control(const std::string& name, int mode, double w, double x, double y, double z) {
   InteractiveMarkerControl c;
   c.name = name;
@@ -83,9 +92,8 @@ class InteractiveTops {
     m.name = top + "/controls";
     m.description = top + ": ring tilts the plane, arrow sets the spin (1 cm = " +
                     std::to_string(static_cast<int>(top_sim_rviz::kSpinPerMetre / 100.0)) + " rad/s)";
-    m.scale = 0.08;
-    m.pose.position.z = 0.05;
-    m.pose.orientation.w = 1.0;
+    m.scale = 0.04;
+    m.pose = rest_pose();
     const double r = std::sqrt(0.5);  // control orientations: their x axis is the axis they act along
     m.controls.push_back(control("tilt", InteractiveMarkerControl::ROTATE_AXIS, 1.0, 0.0, 0.0, 0.0));  // plane x
     m.controls.push_back(control("spin", InteractiveMarkerControl::MOVE_AXIS, r, 0.0, -r, 0.0));       // normal
@@ -109,17 +117,14 @@ class InteractiveTops {
       error = top_sim_rviz::inclination_from_ring(now.alpha, q.w, q.x, q.y, q.z, c.inclination);
       c.set_inclination = true;
     } else if (f->control_name == "spin") {
-      error = top_sim_rviz::spin_from_handle(now.spin, f->pose.position.z - 0.05, c.spin);
+      error = top_sim_rviz::spin_from_handle(now.spin, f->pose.position.z - rest_pose().position.z, c.spin);
       c.set_spin = true;
     } else {
       return;
     }
     if (error.empty()) send(top, c);
     else ROS_WARN("top_sim_interactive: top %s: %s (not sent)", top.c_str(), error.c_str());
-    geometry_msgs::Pose rest;
-    rest.position.z = 0.05;
-    rest.orientation.w = 1.0;
-    server_.setPose(f->marker_name, rest);
+    server_.setPose(f->marker_name, rest_pose());
     server_.applyChanges();
   }
 

@@ -43,7 +43,8 @@ class Interactive(unittest.TestCase):
         f.event_type = event
         f.menu_entry_id = menu
         f.pose.orientation.w, f.pose.orientation.x = math.cos(turn / 2), math.sin(turn / 2)
-        f.pose.position.z = 0.05 + lift
+        f.pose.position.x = 0.05
+        f.pose.position.z = 0.03 + lift  # the rest pose (0.05, 0, 0.03) + the drag
         self.feedback.publish(f)
 
     def test_1_marker_then_ring_arrow_menu(self):
