@@ -200,7 +200,8 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
     throw SceneError(file, "top.inertia_axial",
                      fmt(top.inertia_axial) + " is out of range; must be <= 2 * inertia_transverse = " +
                          fmt(2.0 * top.inertia_transverse) + " for a rigid axisymmetric body");
-  top.max_tilt = s.number("max_tilt", top.max_tilt, [](double v) { return v > 0.0 && v < M_PI; }, "in (0, pi) [rad]");
+  // pi: the body is only its sphere and nothing else can touch the plane (a tippe top turns over).
+  top.max_tilt = s.number("max_tilt", top.max_tilt, [](double v) { return v > 0.0 && v <= M_PI; }, "in (0, pi] [rad]");
   if (s.has("rotor")) {
     Section r(s.raw("rotor"), file, "top.rotor");
     top.has_rotor = true;

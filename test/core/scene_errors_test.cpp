@@ -63,7 +63,7 @@ TEST(SceneErrors, WrongType) {
 
 TEST(SceneErrors, OutOfRangeValues) {
   expect_error("top: {mass: -1}\n", "top.mass", "-1", "> 0");
-  expect_error("top: {max_tilt: 4}\n", "top.max_tilt", "4", "(0, pi)");
+  expect_error("top: {max_tilt: 4}\n", "top.max_tilt", "4", "(0, pi]");
   expect_error("top: {tip_radius: -0.001}\n", "top.tip_radius", "-0.001", ">= 0");
   // A rigid axisymmetric body has I_f <= 2 I_d.
   expect_error("top: {inertia_axial: 7.0e-6, inertia_transverse: 3.0e-6}\n", "top.inertia_axial", "7e-06",
