@@ -1,7 +1,9 @@
 #include "panel_logic.hpp"
 
 #include <cmath>
+#include <cstdint>
 #include <cstdio>
+#include <optional>
 
 #include "conversions.hpp"
 #include "markers.hpp"
@@ -64,25 +66,29 @@ std::string top_name_of(const std::string& node, const std::string& top, const s
   return base + "/" + leaf;
 }
 
+namespace {
+
+// One optional number field: "" (empty, or parsed into `set`, `value` and the core's check) or the parse error.
+std::string number_field(const char* name, const std::string& text, std::uint8_t& set, double& value,
+                         std::optional<double>& check) {
+  if (blank(text)) return "";
+  const std::string error = parse_number(name, text, value);
+  if (!error.empty()) return error;
+  set = true;
+  check = value;
+  return "";
+}
+
+}  // namespace
+
 std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
   out = top_sim::TopCommand();
   top_sim::Command check;
-  double v = 0.0;
-  if (!blank(f.inclination)) {
-    std::string error = parse_number("inclination", f.inclination, v);
-    if (!error.empty()) return error;
-    out.set_inclination = true;
-    out.inclination = v;
-    check.inclination = v;
-  }
-  if (!blank(f.spin)) {
-    std::string error = parse_number("spin", f.spin, v);
-    if (!error.empty()) return error;
-    out.set_spin = true;
-    out.spin = v;
-    check.spin = v;
-  }
-  const std::string error = top_sim::validate(check, top_sim::Model());
+  std::string error = number_field("inclination", f.inclination, out.set_inclination, out.inclination,
+                                   check.inclination);
+  if (error.empty()) error = number_field("spin", f.spin, out.set_spin, out.spin, check.spin);
+  if (!error.empty()) return error;
+  error = top_sim::validate(check, top_sim::Model());
   if (!error.empty()) return error;
   if (!blank(f.friction_law)) return friction_command(f, out);
   if (!out.set_inclination && !out.set_spin) return "nothing to apply: inclination, spin and friction law are empty";
