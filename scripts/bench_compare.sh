@@ -24,7 +24,7 @@ mkdir -p "$dir"
 # Sources of a commit (git archive: no checkout of the working tree) and a Release build of its core and module.
 build() {
   local rev=$1 src=$dir/$1/src bld=$dir/$1/build
-  if [ ! -x "$bld/bin/top_sim_run" ]; then
+  if [ -z "$(tool "$rev")" ]; then
     rm -rf "$src" && mkdir -p "$src"
     git -C "$TOP_SIM_REPO" archive "$rev" | tar -x -C "$src"
     top_sim_log "building $rev in $bld"
@@ -33,15 +33,24 @@ build() {
       || top_sim_die "configure of $rev failed: $dir/$rev/cmake.log"
     cmake --build "$bld" -j"$TOP_SIM_JOBS" --target top_sim_run >"$dir/$rev/build.log" 2>&1 \
       || top_sim_die "build of $rev failed: $dir/$rev/build.log"
+    [ -n "$(tool "$rev")" ] || top_sim_die "no top_sim_run built for $rev (see $dir/$rev/build.log)"
     cmake --build "$bld" -j"$TOP_SIM_JOBS" --target top_sim_python >>"$dir/$rev/build.log" 2>&1 \
       || top_sim_log "$rev has no Python module target: python_trajectory is left out for it"
   fi
 }
 
-# CPU seconds top_sim_run reports ("... simulated in X s CPU ...").
+# A commit's built top_sim_run (bin/ in plain builds; older commits may lay it out as catkin's devel/lib/top_sim).
+tool() { find "$dir/$1/build" -name top_sim_run -type f -perm -u+x 2>/dev/null | head -1; }
+python_dir() { dirname "$(find "$dir/$1/build" -name 'top_sim.cpython*.so' 2>/dev/null | head -1)" 2>/dev/null; }
+
+# CPU seconds top_sim_run reports on stdout ("... simulated in X s CPU ..."; older commits lack --quiet, and
+# progress goes to stderr only on a terminal); "nan", after a message, when it reported none.
 run_cpu() {
   local rev=$1; shift
-  "$dir/$rev/build/bin/top_sim_run" "$@" --quiet | sed -n 's/.* simulated in \([0-9.e+-]*\) s CPU.*/\1/p' | head -1
+  local cpu
+  cpu=$("$(tool "$rev")" "$@" 2>/dev/null </dev/null | sed -n 's/.* simulated in \([0-9.e+-]*\) s CPU.*/\1/p' | head -1)
+  [ -n "$cpu" ] || { echo "top_sim_run of $rev reported no CPU time for: $*" >&2; cpu=nan; }
+  echo "$cpu"
 }
 
 # One round of every figure for one commit: lines "figure value".
@@ -51,11 +60,13 @@ round() {
   local with without
   with=$(run_cpu "$rev" "$src/config/scenes/default.yaml" --duration 60 --rate 1000 --csv "$dir/rows.csv")
   without=$(run_cpu "$rev" "$src/config/scenes/default.yaml" --duration 60 --rate 1000)
-  echo "csv_us_per_row $(/usr/bin/python3 -c "print(max(0.0, ($with - $without) / 60001 * 1e6))")"
+  echo "csv_us_per_row $(/usr/bin/python3 -c "print(max(0.0, (float('$with') - float('$without')) / 60001 * 1e6))")"
   echo "hopping $(run_cpu "$rev" "$src/config/scenes/hopping.yaml")"
   echo "coulomb $(run_cpu "$rev" "$src/config/scenes/coulomb.yaml")"
-  ls "$dir/$rev/build/python"/top_sim*.so >/dev/null 2>&1 || return 0
-  echo "python_trajectory $(PYTHONPATH="$dir/$rev/build/python" /usr/bin/python3 -c "
+  local pydir
+  pydir=$(python_dir "$rev")
+  [ -n "$pydir" ] && [ "$pydir" != . ] || return 0
+  echo "python_trajectory $(PYTHONPATH="$pydir" /usr/bin/python3 -c "
 import time, top_sim
 s = top_sim.Simulator('default'); t0 = time.process_time(); s.trajectory(60.0, 1000.0)
 print(time.process_time() - t0)")"
@@ -76,7 +87,8 @@ path, base, head = sys.argv[1:4]
 data = {}
 for line in open(path):
     k, rev, fig, value = line.split()
-    data.setdefault(fig, {}).setdefault(rev, {})[int(k)] = float(value)
+    if value != 'nan':  # a run that reported nothing (said so on stderr) is left out
+        data.setdefault(fig, {}).setdefault(rev, {})[int(k)] = float(value)
 print(f"{'figure':22} {base + ' (median)':>18} {head + ' (median)':>18} {'ratio med':>10} {'min':>7} {'max':>7}")
 for fig, by in data.items():
     b, h = by.get(base, {}), by.get(head, {})
@@ -87,5 +99,5 @@ for fig, by in data.items():
     unit = ' us' if fig.endswith('us_per_row') else ' s'
     print(f"{fig:22} {statistics.median(b.values()):>16.4g}{unit} {statistics.median(h.values()):>16.4g}{unit} "
           f"{statistics.median(ratios):>10.3f} {min(ratios):>7.3f} {max(ratios):>7.3f}")
-print(f"({len(next(iter(data.values()))[base])} interleaved runs; CPU times; ratio < 1: {head} is faster)")
+print(f"(interleaved runs; CPU times; ratio < 1: {head} is faster)")
 EOF
