@@ -113,6 +113,7 @@ void add_tip_and_spin(const top_sim::Snapshot& s, const top_sim::Top& top, const
   Marker tip = marker(frame, stamp, "tip", kTipMarker, Marker::SPHERE, {0.9f, 0.2f, 0.2f});
   tip.pose.position = point(to_body * (s.tip_center - s.com));
   tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * top.tip_radius;
+  if (top.com_offset < 0.0) tip.action = Marker::DELETE;  // a tippe top's sphere is its body
   out.markers.push_back(tip);
 
   Marker spin = marker(frame, stamp, "spin", kSpinMarker, Marker::ARROW, {0.1f, 0.5f, 1.0f});

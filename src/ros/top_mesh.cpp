@@ -5,7 +5,34 @@
 
 namespace top_sim_ros {
 
+namespace {
+
+// A tippe top (f < 0): the body is its sphere, centred |f| above the centre of mass (at z = -f), with
+// a short stem on its pole along +f_hat, so that turning over shows.
+TopShape ball_shape(const top_sim::Top& top) {
+  const double f = top.com_offset, R = top.tip_radius;
+  TopShape s;
+  s.body_radius = R;
+  s.stem_radius = 0.2 * R;
+  const double pole = std::sqrt(R * R - s.stem_radius * s.stem_radius);  // where the stem leaves the sphere
+  s.stem_bottom = -f + pole;
+  s.stem_top = -f + 1.5 * R;
+  s.rim_height = 2.0 * R;
+  constexpr int kArc = 16;  // points on the meridian from the bottom pole to the stem's foot
+  const double end = std::asin(pole / R);
+  for (int i = 0; i <= kArc; ++i) {
+    const double a = -0.5 * M_PI + (end + 0.5 * M_PI) * i / kArc;
+    s.profile.emplace_back(R * std::cos(a), -f + R * std::sin(a));
+  }
+  s.profile.front().x() = 0.0;  // exactly on the axis: a fan, no degenerate triangles
+  s.profile.emplace_back(0.0, s.stem_bottom);
+  return s;
+}
+
+}  // namespace
+
 TopShape top_shape(const top_sim::Top& top) {
+  if (top.com_offset < 0.0) return ball_shape(top);
   const double f = top.com_offset, R = top.tip_radius;
   TopShape s;
   s.body_radius = std::sqrt(2.0 * top.inertia_axial / top.mass);

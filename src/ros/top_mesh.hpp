@@ -22,6 +22,8 @@ struct TopShape {
   std::vector<Eigen::Vector2d> profile;
 };
 
+// An ordinary top (f >= 0) as above; a tippe top (f < 0, the centre of mass below the sphere's centre) as its sphere
+// with a short stem on the pole along +f_hat (body_radius = R).
 TopShape top_shape(const top_sim::Top& top);
 
 // Triangles (three points each, counter-clockwise seen from outside) of `profile` turned about z through `sweep`

@@ -341,6 +341,7 @@ std::vector<top_sim::Top> drawn_tops() {
   ball.mass = 0.1; ball.tip_radius = 0.01; ball.com_offset = 0.0;
   ball.inertia_axial = ball.inertia_transverse = 4.0e-6;
   tops.push_back(ball);
+  tops.push_back(top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/tippe_top.yaml").model.top);
   return tops;
 }
 
@@ -387,6 +388,7 @@ TEST(TopMesh, BodyIsClosedOutwardAndFinite) {
 // centre (f below the centre of mass); a heavier top of the same inertia is narrower.
 TEST(TopMesh, SizesComeFromTheModel) {
   for (top_sim::Top top : drawn_tops()) {
+    if (top.com_offset < 0.0) continue;  // a tippe top: TippeTopIsItsSphereWithAStem
     for (const double mass_factor : {1.0, 4.0}) {
       top.mass *= mass_factor;
       const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
@@ -412,6 +414,23 @@ const visualization_msgs::Marker* find_marker(const visualization_msgs::MarkerAr
     if (m.ns == ns) return &m;
   return nullptr;
 }
+
+// A tippe top (f < 0) is drawn as its sphere (centre |f| above the centre of mass, radius R) with a stem on the pole
+// along +f_hat: turning over shows. Its tip-sphere marker is deleted (the body is that sphere).
+TEST(TopMesh, TippeTopIsItsSphereWithAStem) {
+  const top_sim::Top top = drawn_tops().back();
+  ASSERT_LT(top.com_offset, 0.0);
+  const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
+  const Eigen::Vector3d centre(0.0, 0.0, -top.com_offset);
+  for (const Eigen::Vector3d& p : top_sim_ros::revolve(shape.profile, 32, 0.0, 2.0 * M_PI))
+    if (p.z() < shape.stem_bottom - 1e-12) EXPECT_NEAR((p - centre).norm(), top.tip_radius, 1e-12);
+  EXPECT_NEAR(shape.profile.front().y(), -top.com_offset - top.tip_radius, 1e-15);
+  EXPECT_GT(shape.stem_top, -top.com_offset + top.tip_radius) << "the stem stands out of the sphere";
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), a);
+  EXPECT_EQ(find_marker(a, "tip")->action, visualization_msgs::Marker::DELETE);
+}
+
 
 // Body, stripe and stem live in the top frame, locked to it, so tf's plane -> top rotation (spin phase included)
 // turns them; the stripe is a band off the axis on one side (body +x), raised above the body's surface.
