@@ -11,8 +11,19 @@
 namespace top_sim {
 
 // The values are the regime codes of the messages (TopState.msg, top_state_t.lcm), whose adapters assert them.
-enum class Regime { nutating = 0, precessing = 1, sleeping = 2, sliding = 3, contact_fault = 4 };
-constexpr int kRegimeCount = 5;  // the indexes of per-regime arrays (the summary's regime_seconds)
+// A tippe top (com_offset < 0, physics.md section 11) has its own regimes: upright, inverting, inverted, tumbling.
+enum class Regime {
+  nutating = 0,
+  precessing = 1,
+  sleeping = 2,
+  sliding = 3,
+  contact_fault = 4,
+  upright = 5,
+  inverting = 6,
+  inverted = 7,
+  tumbling = 8,
+};
+constexpr int kRegimeCount = 9;  // the indexes of per-regime arrays (the summary's regime_seconds)
 
 constexpr std::uint8_t code(Regime r) { return static_cast<std::uint8_t>(r); }
 const char* to_string(Regime r);
@@ -24,7 +35,15 @@ struct RegimeIndicators {
   double acceleration = 0.0;    // |a_cm| [m/s^2]
   double speed = 0.0;           // |v_cm| [m/s]
   bool runaway = false;         // no stationary state, or slip beyond the unstable root
+  bool tippe = false;           // a tippe top (com_offset < 0): classified by its tilt
+  double tilt = 0.0;            // angle of f_hat from the plane normal [rad]
+  double tilt_rate = 0.0;       // its time derivative [rad/s]
 };
+
+// A tippe top's regime from its tilt: upright and inverted within kTippeEndTilt of 0 and pi, tumbling in between
+// while the tilt holds (|rate| < kTippeSteadyRate), inverting while it moves.
+constexpr double kTippeEndTilt = 0.5;      // [rad]
+constexpr double kTippeSteadyRate = 0.05;  // [rad/s]
 
 // `dyn` is the dynamics of y and `stationary` the sleeping state at y's shell spin (each computed once by the caller).
 RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,

@@ -1,6 +1,7 @@
 // Regime classification (physics.md section 8).
 #include "top_sim/regime.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 namespace top_sim {
@@ -12,6 +13,10 @@ const char* to_string(Regime r) {
     case Regime::sleeping: return "sleeping";
     case Regime::sliding: return "sliding";
     case Regime::contact_fault: return "contact_fault";
+    case Regime::upright: return "upright";
+    case Regime::inverting: return "inverting";
+    case Regime::inverted: return "inverted";
+    case Regime::tumbling: return "tumbling";
   }
   return "?";
 }
@@ -54,11 +59,27 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   ind.speed = (velocity3(y) + w.cross(top.com_offset * f_hat)).norm();
 
   ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
+  ind.tippe = top.com_offset < 0.0;
+  const double fz = std::max(-1.0, std::min(1.0, f_hat.z()));
+  ind.tilt = std::acos(fz);
+  const double s = std::sqrt(std::max(0.0, 1.0 - fz * fz));
+  ind.tilt_rate = s > 0.0 ? -f_dot.z() / s : 0.0;
   return ind;
 }
 
+namespace {
+
+Regime tippe_regime(const RegimeIndicators& ind) {
+  if (ind.tilt < kTippeEndTilt) return Regime::upright;
+  if (ind.tilt > M_PI - kTippeEndTilt) return Regime::inverted;
+  return std::abs(ind.tilt_rate) < kTippeSteadyRate ? Regime::tumbling : Regime::inverting;
+}
+
+}  // namespace
+
 Regime classify(const RegimeThresholds& th, const RegimeIndicators& ind, bool fault, Regime previous) {
   if (fault) return Regime::contact_fault;
+  if (ind.tippe) return tippe_regime(ind);
   // A sliding top keeps a steady omega-f_hat offset from the friction torque: sliding outranks nutation.
   if (ind.runaway) return Regime::sliding;
   if (ind.nutation_angle > th.nutation_angle || std::abs(ind.nutation_rate) > th.nutation_rate)

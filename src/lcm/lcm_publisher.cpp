@@ -21,6 +21,10 @@ static_assert(top_state_t::PRECESSING == top_sim::code(top_sim::Regime::precessi
 static_assert(top_state_t::SLEEPING == top_sim::code(top_sim::Regime::sleeping), "top_state_t regime code");
 static_assert(top_state_t::SLIDING == top_sim::code(top_sim::Regime::sliding), "top_state_t regime code");
 static_assert(top_state_t::CONTACT_FAULT == top_sim::code(top_sim::Regime::contact_fault), "top_state_t regime code");
+static_assert(top_state_t::UPRIGHT == top_sim::code(top_sim::Regime::upright), "top_state_t regime code");
+static_assert(top_state_t::INVERTING == top_sim::code(top_sim::Regime::inverting), "top_state_t regime code");
+static_assert(top_state_t::INVERTED == top_sim::code(top_sim::Regime::inverted), "top_state_t regime code");
+static_assert(top_state_t::TUMBLING == top_sim::code(top_sim::Regime::tumbling), "top_state_t regime code");
 static_assert(top_state_t::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "top_state_t mode code");
 static_assert(top_state_t::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "top_state_t mode code");
 static_assert(top_state_t::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "top_state_t mode code");

@@ -344,7 +344,7 @@ void bind_constants(py::module_& m) {
     names.push_back(c.name);
     units.push_back(c.unit);
   }
-  for (int r = 0; r <= static_cast<int>(Regime::contact_fault); ++r) regimes.push_back(to_string(static_cast<Regime>(r)));
+  for (int r = 0; r < kRegimeCount; ++r) regimes.push_back(to_string(static_cast<Regime>(r)));
   for (int c = 0; c < kContactModeCount; ++c) modes.push_back(to_string(static_cast<ContactMode>(c)));
   m.attr("COLUMNS") = names;
   m.attr("UNITS") = units;

@@ -45,6 +45,10 @@ static_assert(top_sim::TopState::PRECESSING == top_sim::code(top_sim::Regime::pr
 static_assert(top_sim::TopState::SLEEPING == top_sim::code(top_sim::Regime::sleeping), "TopState regime code");
 static_assert(top_sim::TopState::SLIDING == top_sim::code(top_sim::Regime::sliding), "TopState regime code");
 static_assert(top_sim::TopState::CONTACT_FAULT == top_sim::code(top_sim::Regime::contact_fault), "TopState regime code");
+static_assert(top_sim::TopState::UPRIGHT == top_sim::code(top_sim::Regime::upright), "TopState regime code");
+static_assert(top_sim::TopState::INVERTING == top_sim::code(top_sim::Regime::inverting), "TopState regime code");
+static_assert(top_sim::TopState::INVERTED == top_sim::code(top_sim::Regime::inverted), "TopState regime code");
+static_assert(top_sim::TopState::TUMBLING == top_sim::code(top_sim::Regime::tumbling), "TopState regime code");
 static_assert(top_sim::TopState::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "TopState mode code");
 static_assert(top_sim::TopState::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "TopState mode code");
 static_assert(top_sim::TopState::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "TopState mode code");

@@ -164,6 +164,10 @@ Rgb body_colour(const top_sim::Snapshot& s, ColorBy by) {
     case Regime::precessing: return {0.95f, 0.85f, 0.3f};
     case Regime::sliding: return {0.9f, 0.3f, 0.3f};
     case Regime::contact_fault: return {0.8f, 0.2f, 0.8f};
+    case Regime::upright: return {0.3f, 0.75f, 0.9f};
+    case Regime::inverting: return {0.95f, 0.45f, 0.6f};
+    case Regime::inverted: return {0.45f, 0.35f, 0.95f};
+    case Regime::tumbling: return {0.6f, 0.5f, 0.3f};
     case Regime::nutating: break;
   }
   return {1.0f, 0.6f, 0.2f};

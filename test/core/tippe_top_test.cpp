@@ -77,6 +77,26 @@ TEST(TippeTop, JellettsIntegralHoldsThroughFlightAndImpacts) {
   EXPECT_LT(worst, 1e-8);
 }
 
+// The regime a tippe top publishes is its own: upright at the start (tilt 0.1), inverting while the tilt moves
+// through the middle, inverted at the end (tilt > pi - 0.5); the rolling one stays upright. No sleeping-top regime.
+TEST(TippeTop, RegimeFollowsTheTurnOver) {
+  top_sim::Simulator sim(tippe("tippe_top.yaml"));
+  EXPECT_TRUE(sim.advance_to(0.01));
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::upright);
+  bool inverting = false;
+  for (int k = 1; k <= 120 && !inverting; ++k) {
+    ASSERT_TRUE(sim.advance_to(0.1 * k));
+    inverting = sim.snapshot().regime == top_sim::Regime::inverting;
+  }
+  EXPECT_TRUE(inverting) << "no inverting phase";
+  ASSERT_TRUE(sim.advance_to(12.0));
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::inverted);
+  top_sim::Simulator rolling(tippe("tippe_top_rolling.yaml"));
+  ASSERT_TRUE(rolling.advance_to(5.0));
+  EXPECT_EQ(rolling.snapshot().regime, top_sim::Regime::upright);
+  EXPECT_STREQ(top_sim::to_string(top_sim::Regime::tumbling), "tumbling");
+}
+
 // Exact Coulomb with stick: the contact rolls within 0.1 s, the energy holds to 1e-9 relative while it rolls (no
 // slip, no dissipation), lambda holds through the switches, and the top never turns over.
 TEST(TippeTop, RollingTopNeverInverts) {

@@ -564,10 +564,10 @@ TEST(TopStateMsg, SnapshotRoundTripIsExact) {
 
 TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
   top_sim::TopState m;
-  m.regime = 5;
+  m.regime = 9;
   std::string error;
   top_sim_ros::to_snapshot(m, error);
-  EXPECT_EQ(error, "regime = 5: must be a code in 0..4");
+  EXPECT_EQ(error, "regime = 9: must be a code in 0..8");
   m.regime = top_sim::TopState::SLEEPING;
   m.contact_mode = 3;
   top_sim_ros::to_snapshot(m, error);
