@@ -120,6 +120,35 @@ struct StabilityCrossing {
 StabilityCrossing locate_stability_loss(const Model& model, double spin, double rotor_spin = 0.0,
                                         const StabilityOptions& options = {}, int scan_points = 64);
 
+// A tippe top's (com_offset f < 0: the centre of mass |f| below the sphere's centre along -f_hat) spinning states
+// on a level plane (physics.md section 11, docs/analysis.md "The tippe top's spinning states"): upright = f_hat = +n
+// (the centre of mass below the sphere's centre, the stem up: Magnus' a = |f| > 0), inverted = f_hat = -n (the
+// centre of mass above the centre, spinning on the stem side: a = -|f|). Both spin at omega = spin f_hat (spin
+// about the figure axis, as for the sleeping state; about the vertical it is +-spin) with u = 0, so the contact's
+// material velocity v_t = u - R omega x n is 0: an equilibrium of the slipping model, whose regularised friction
+// -mu(0) N v_t / v_eps is linear in v_t there.
+enum class SpinningState { upright, inverted };
+const char* to_string(SpinningState state);
+bool parse_spinning_state(const std::string& name, SpinningState& out);
+
+// The full state (position, W_diss, gap and psi zero); a rotor at absolute spin rotor_spin (nu = rotor_spin - spin).
+StateVector spinning_state(const Model& model, SpinningState state, double spin, double rotor_spin = 0.0);
+
+// Why the state cannot be analysed ("" when it can): com_offset >= 0, an inclined plane, an inverted state beyond
+// the body's max_tilt (< pi), or a law with mu(0) = 0 (no friction at zero slip: the linearisation is frictionless
+// and does not decide stability). Each reason names the field, its value and what is needed.
+std::string spinning_state_refusal(const Model& model, SpinningState state);
+
+// The spectrum at spinning_state() (exists = false with the refusal as reason); alpha = 0, slip = 0.
+StabilityResult spinning_stability(const Model& model, SpinningState state, double spin, double rotor_spin = 0.0,
+                                   const StabilityOptions& options = {});
+
+// Magnus' critical spin squared for a friction linear in the slip velocity (Leine & Glocker, DETC2003/VIB-48426,
+// Eq. 18; derived in docs/analysis.md): omega_k^2 = -a m g / ((r/h) I1 (I3/I1 - r/h)), r = R, a = -f (upright) or
+// f (inverted), h = r - a, I1 = I_d, I3 = I_f. The state is stable exactly where c omega^2 < m g a with
+// c = (r/h) (I1 r/h - I3): omega_k^2 < 0 means no crossing (stable at every spin when a > 0, unstable when a < 0).
+double magnus_critical_spin_squared(const Model& model, SpinningState state);
+
 // Which real part a spin sweep watches.
 enum class WatchedMode { any, precession, nutation };
 
@@ -132,6 +161,10 @@ struct SpinWindow {
 // Scans `points` shell spins evenly from w0 to w1 at the model's alpha, rotor at absolute spin `rotor_spin`.
 std::vector<SpinWindow> unstable_spin_windows(const Model& model, double rotor_spin, double w0, double w1, int points,
                                               WatchedMode watched, const StabilityOptions& options = {});
+// The same for a tippe top's spinning state (a state that cannot be analysed counts as the stable side).
+std::vector<SpinWindow> unstable_spin_windows(const Model& model, SpinningState state, double rotor_spin, double w0,
+                                              double w1, int points, WatchedMode watched,
+                                              const StabilityOptions& options = {});
 
 // The watched real part of a result (max_real, Re precession or Re nutation).
 double watched_real(const StabilityResult& r, WatchedMode watched);

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "top_sim/dynamics.hpp"
+#include "top_sim/format.hpp"
 
 namespace top_sim {
 
@@ -164,6 +165,31 @@ double largest_real_but_zero(const Spectrum& s) {
 
 }  // namespace
 
+namespace {
+
+// The spectrum of the full model `model` at the state y (shell spin r.spin, rotor r.rotor_spin): fills r.
+void analyse_state(const Model& model, const StateVector& y, const StabilityOptions& options, StabilityResult& r) {
+  r.exists = true;
+  r.jacobian = reduced_jacobian(model, y, options);
+  const ReducedCoordinates rc = reduced_coordinates(model, figure_axis(y));
+  r.residual = reduced_rate(model, rc, reduce(rc, y)).norm();
+  const Spectrum s = classified_spectrum(model, r.jacobian, r.spin, r.rotor_spin);
+  r.eigenvalues = s.eigenvalues;
+  r.zero = s.zero;
+  r.modes = s.modes;
+  r.max_real = largest_real_but_zero(s);
+  r.stable = r.max_real < -options.stability_tolerance;
+  r.relaxation_time = 1.0 / std::abs(r.modes.precession.real());
+  // The error estimate: the same analysis at twice the step.
+  StabilityOptions doubled = options;
+  doubled.step *= 2.0;
+  const Spectrum s2 = classified_spectrum(model, reduced_jacobian(model, y, doubled), r.spin, r.rotor_spin);
+  r.precession_error = std::abs(s2.modes.precession.real() - r.modes.precession.real());
+  r.resolved = r.precession_error <= 0.01 * std::abs(r.modes.precession.real());
+}
+
+}  // namespace
+
 StabilityResult stability_at(const Model& model_in, const StationaryState& st, double spin, double rotor_spin,
                              const StabilityOptions& options) {
   StabilityResult r;
@@ -190,24 +216,7 @@ StabilityResult stability_at(const Model& model_in, const StationaryState& st, d
                "(s shifted by more than 1 %), not the law's; no linearisation";
     return r;
   }
-  r.exists = true;
-  const StateVector y = stationary_state_vector(model, st, spin, Eigen::Vector2d::Zero(), r.rotor_spin);
-  r.jacobian = reduced_jacobian(model, y, options);
-  const ReducedCoordinates rc = reduced_coordinates(model, st.f_hat);
-  r.residual = reduced_rate(model, rc, reduce(rc, y)).norm();
-  const Spectrum s = classified_spectrum(model, r.jacobian, spin, r.rotor_spin);
-  r.eigenvalues = s.eigenvalues;
-  r.zero = s.zero;
-  r.modes = s.modes;
-  r.max_real = largest_real_but_zero(s);
-  r.stable = r.max_real < -options.stability_tolerance;
-  r.relaxation_time = 1.0 / std::abs(r.modes.precession.real());
-  // The error estimate: the same analysis at twice the step.
-  StabilityOptions doubled = options;
-  doubled.step *= 2.0;
-  const Spectrum s2 = classified_spectrum(model, reduced_jacobian(model, y, doubled), spin, r.rotor_spin);
-  r.precession_error = std::abs(s2.modes.precession.real() - r.modes.precession.real());
-  r.resolved = r.precession_error <= 0.01 * std::abs(r.modes.precession.real());
+  analyse_state(model, stationary_state_vector(model, st, spin, Eigen::Vector2d::Zero(), r.rotor_spin), options, r);
   return r;
 }
 
@@ -303,11 +312,14 @@ StabilityCrossing locate_stability_loss(const Model& model, double spin, double 
   return c;
 }
 
-std::vector<SpinWindow> unstable_spin_windows(const Model& model, double rotor_spin, double w0, double w1, int points,
-                                              WatchedMode watched, const StabilityOptions& options) {
+namespace {
+
+// The scan of unstable_spin_windows() over the analysis `at` of a spin.
+std::vector<SpinWindow> scan_spin_windows(const std::function<StabilityResult(double)>& at, double w0, double w1,
+                                          int points, WatchedMode watched) {
   std::vector<SpinWindow> windows;
   auto state = [&](double w) {
-    const StabilityResult r = sleeping_stability(model, w, rotor_spin, options);
+    const StabilityResult r = at(w);
     return r.exists ? (watched_real(r, watched) > 0.0 ? 1 : 0) : -1;
   };
   const double tol = 1e-12 * std::max(std::abs(w1 - w0), 1e-300);
@@ -315,7 +327,7 @@ std::vector<SpinWindow> unstable_spin_windows(const Model& model, double rotor_s
   double prev = w0;
   for (int i = 0; i < points; ++i) {
     const double w = points == 1 ? w0 : w0 + (w1 - w0) * i / (points - 1);
-    const StabilityResult r = sleeping_stability(model, w, rotor_spin, options);
+    const StabilityResult r = at(w);
     const int now = r.exists ? (watched_real(r, watched) > 0.0 ? 1 : 0) : -1;
     if (now == 1 && prev_state != 1) {
       windows.push_back({prev_state == -2 ? w : bisect_edge(w, prev, tol, state, count), w1, -INFINITY, w});
@@ -330,6 +342,80 @@ std::vector<SpinWindow> unstable_spin_windows(const Model& model, double rotor_s
     prev = w;
   }
   return windows;
+}
+
+double axis_sign(SpinningState state) { return state == SpinningState::upright ? 1.0 : -1.0; }
+
+}  // namespace
+
+std::vector<SpinWindow> unstable_spin_windows(const Model& model, double rotor_spin, double w0, double w1, int points,
+                                              WatchedMode watched, const StabilityOptions& options) {
+  return scan_spin_windows([&](double w) { return sleeping_stability(model, w, rotor_spin, options); }, w0, w1,
+                           points, watched);
+}
+
+std::vector<SpinWindow> unstable_spin_windows(const Model& model, SpinningState state, double rotor_spin, double w0,
+                                              double w1, int points, WatchedMode watched,
+                                              const StabilityOptions& options) {
+  return scan_spin_windows([&](double w) { return spinning_stability(model, state, w, rotor_spin, options); }, w0,
+                           w1, points, watched);
+}
+
+const char* to_string(SpinningState state) { return state == SpinningState::upright ? "upright" : "inverted"; }
+
+bool parse_spinning_state(const std::string& name, SpinningState& out) {
+  if (name != "upright" && name != "inverted") return false;
+  out = name == "upright" ? SpinningState::upright : SpinningState::inverted;
+  return true;
+}
+
+StateVector spinning_state(const Model& model, SpinningState state, double spin, double rotor_spin) {
+  StateVector y{};
+  const Eigen::Vector3d f_hat = axis_sign(state) * Eigen::Vector3d::UnitZ();
+  set_figure_axis(y, f_hat);
+  set_angular_velocity(y, spin * f_hat);
+  y[idx::nu] = model.top.has_rotor ? rotor_spin - spin : 0.0;
+  return y;
+}
+
+std::string spinning_state_refusal(const Model& model, SpinningState state) {
+  const std::string name = to_string(state);
+  if (!(model.top.com_offset < 0.0))
+    return "top.com_offset = " + format_number(model.top.com_offset) + " m: the " + name +
+           " spinning state is a tippe top's (com_offset < 0, the centre of mass below the sphere's centre)";
+  if (model.plane.inclination != 0.0)
+    return "plane.inclination = " + format_number(model.plane.inclination) + " rad: the " + name +
+           " spinning state is an equilibrium on a level plane only (plane.inclination 0)";
+  if (state == SpinningState::inverted && std::cos(model.top.max_tilt) > -1.0 + 1e-12)
+    return "top.max_tilt = " + format_number(model.top.max_tilt) + " rad: the inverted state (tilt pi) needs " +
+           "max_tilt = pi (only the sphere touches the plane)";
+  const double mu0 = friction_coefficient(model.friction, 0.0);
+  if (!(mu0 > 0.0))
+    return "mu(0) = " + format_number(mu0) + ": the friction law has no friction at zero slip, so the linearisation " +
+           "at v_t = 0 is frictionless and does not decide stability (needs mu(0) > 0, e.g. coulomb)";
+  return "";
+}
+
+StabilityResult spinning_stability(const Model& model_in, SpinningState state, double spin, double rotor_spin,
+                                   const StabilityOptions& options) {
+  StabilityResult r;
+  Model model = model_in;
+  model.kind = ModelKind::full;  // as stability_at
+  r.alpha = model.plane.inclination;
+  r.spin = spin;
+  r.rotor_spin = model.top.has_rotor ? rotor_spin : 0.0;
+  r.reason = spinning_state_refusal(model, state);
+  if (r.reason.empty()) analyse_state(model, spinning_state(model, state, spin, r.rotor_spin), options, r);
+  return r;
+}
+
+double magnus_critical_spin_squared(const Model& model, SpinningState state) {
+  const Top& top = model.top;
+  const double r = top.tip_radius;
+  const double a = -axis_sign(state) * top.com_offset;  // > 0: the centre of mass below the sphere's centre
+  const double h = r - a;                               // the centre of mass's height above the contact
+  const double I1 = top.inertia_transverse, I3 = top.inertia_axial;
+  return -a * top.mass * model.plane.gravity / ((r / h) * I1 * (I3 / I1 - r / h));
 }
 
 }  // namespace top_sim
