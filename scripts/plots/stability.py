@@ -1,10 +1,14 @@
 #!/usr/bin/python3
 """The sweeps of top_sim_stability (physics.md section 10): real parts of the classified eigenvalues against the
-inclination (with alpha_c located and analytic) and against the shell spin (with the unstable windows).
+inclination (with alpha_c located and analytic) and against the shell spin (with the unstable windows); for a
+tippe top the largest real part but the zero one of its spinning upright and inverted states against the spin, with
+the located crossings and Magnus' critical spins.
 
 usage: stability.py SWEEP.csv OUT.png [--alpha-c A] [--alpha-c-analytic A] [--nutation-windows LO:HI,...]
-                    [--title TEXT]
-SWEEP.csv is written by top_sim_stability --plot (one row per analysed state; sweep = alpha or spin).
+                    [--windows-upright LO:HI,...] [--windows-inverted LO:HI,...] [--magnus-upright W]
+                    [--magnus-inverted W] [--title TEXT]
+SWEEP.csv is written by top_sim_stability --plot (one row per analysed state; sweep = alpha, spin, upright or
+inverted).
 """
 import argparse
 import math
@@ -47,6 +51,38 @@ def spin_panel(ax, d, windows, letter):
     ax.legend(fontsize=7, loc="best")
 
 
+STATE_COLOURS = {"upright": "tab:blue", "inverted": "tab:orange"}
+
+
+def parse_windows(text):
+    return [tuple(float(x) for x in w.split(":")) for w in text.split(",") if w]
+
+
+def spinning_panel(ax, d, sweeps, windows, magnus, letter):
+    """Max Re but the zero one against the spin for each spinning state; crossings located (edges of the unstable
+    windows inside the sweep) and Magnus' omega_k (dashed)."""
+    for state in ("upright", "inverted"):
+        rows = sweeps == state
+        if not rows.any():
+            continue
+        w, m = d["spin"][rows], d["max_real"][rows]
+        colour = STATE_COLOURS[state]
+        ax.plot(w, m, "-", lw=1.4, color=colour, label=f"{state}: max Re (all eigenvalues but the zero one)")
+        inside = [e for lo, hi in windows[state] for e in (lo, hi) if w.min() < e < w.max()]
+        for k, e in enumerate(inside):
+            ax.plot([e], [0.0], "o", ms=7, mfc="none", mec=colour, mew=1.5,
+                    label=f"{state}: crossing located {e:.8g} rad/s" if k == 0 else None)
+        if not math.isnan(magnus[state]):
+            ax.axvline(magnus[state], color=colour, ls="--", lw=0.9,
+                       label=f"{state}: Magnus omega_k = {magnus[state]:.8g} rad/s")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.set_yscale("symlog", linthresh=1e-3)
+    ax.set_xlabel("spin about the figure axis [rad/s]")
+    ax.set_ylabel("largest Re(lambda) [1/s] (symlog; > 0 unstable)")
+    ax.set_title(f"{letter}the tippe top's spinning states against the spin")
+    ax.legend(fontsize=7, loc="lower right")
+
+
 def main():
     p = argparse.ArgumentParser(usage=__doc__)
     p.add_argument("csv")
@@ -54,20 +90,28 @@ def main():
     p.add_argument("--alpha-c", type=float, default=float("nan"))
     p.add_argument("--alpha-c-analytic", type=float, default=float("nan"))
     p.add_argument("--nutation-windows", default="")
+    for state in ("upright", "inverted"):
+        p.add_argument(f"--windows-{state}", default="")
+        p.add_argument(f"--magnus-{state}", type=float, default=float("nan"))
     p.add_argument("--title", default="")
     args = p.parse_args()
     d = load(args.csv)
     sweeps = np.array(d["sweep"])
     kinds = [k for k in ("alpha", "spin") if (sweeps == k).any()]
+    if ((sweeps == "upright") | (sweeps == "inverted")).any():
+        kinds.append("spinning")
     fig, axes = plt.subplots(1, len(kinds), figsize=(6.5 * len(kinds), 4.6), squeeze=False)
     for k, (ax, kind) in enumerate(zip(axes[0], kinds)):
         rows = {key: (np.asarray(v)[sweeps == kind]) for key, v in d.items()}
         letter = f"{'ab'[k]}) " if len(kinds) > 1 else ""
-        if kind == "alpha":
+        if kind == "spinning":
+            windows = {"upright": parse_windows(args.windows_upright), "inverted": parse_windows(args.windows_inverted)}
+            magnus = {"upright": args.magnus_upright, "inverted": args.magnus_inverted}
+            spinning_panel(ax, d, sweeps, windows, magnus, letter)
+        elif kind == "alpha":
             alpha_panel(ax, rows, args.alpha_c, args.alpha_c_analytic, letter)
         else:
-            windows = [tuple(float(x) for x in w.split(":")) for w in args.nutation_windows.split(",") if w]
-            spin_panel(ax, rows, windows, letter)
+            spin_panel(ax, rows, parse_windows(args.nutation_windows), letter)
     if args.title:
         fig.suptitle(f"top_sim_stability: {args.title}", fontsize=10)
     fig.tight_layout()

@@ -1,6 +1,7 @@
 // top_sim_stability SCENE.yaml [options]: the linear stability of the scene's sleeping state (physics.md section
-// 10, include/top_sim/stability.hpp); see kUsage below, docs/interfaces.md and docs/analysis.md.
-// Exit 0 ok, 1 an output (JSON, plot) not written, 2 bad scene or argument, 3 no sleeping state to analyse.
+// 10, include/top_sim/stability.hpp), or of a tippe top's spinning upright or inverted state (--state); see kUsage
+// below, docs/interfaces.md and docs/analysis.md.
+// Exit 0 ok, 1 an output (JSON, plot) not written, 2 bad scene or argument, 3 no state to analyse.
 #include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -30,23 +31,30 @@ extern char** environ;
 namespace {
 
 using top_sim::Eigenvalue;
+using top_sim::SpinningState;
 using top_sim::StabilityResult;
 
 const char* kUsage =
-    "usage: top_sim_stability SCENE.yaml [--spin W] [--json FILE|-] [--sweep-alpha A0:A1:N]\n"
-    "                         [--sweep-spin W0:W1:N] [--plot FILE.png]\n"
+    "usage: top_sim_stability SCENE.yaml [--state upright|inverted] [--spin W] [--json FILE|-]\n"
+    "                         [--sweep-alpha A0:A1:N] [--sweep-spin W0:W1:N] [--plot FILE.png]\n"
     "  Linear stability of the scene's sleeping state (physics.md section 10): eigenvalues of the Jacobian of the\n"
     "  right-hand side over u, f_hat (tangent plane), omega (and nu with a rotor), classified.\n"
+    "  --state S              a tippe top (top.com_offset < 0) on a level plane: its spinning state S, upright\n"
+    "                         (f_hat = +n, the centre of mass below the sphere's centre) or inverted (f_hat = -n,\n"
+    "                         on the stem side), next to Magnus' critical spin; without --state a tippe top's\n"
+    "                         --sweep-spin sweeps both states\n"
     "  --spin W               shell spin omega* [rad/s], nonzero, |W| <= 1e6 (default: the scene's initial.spin);\n"
     "                         a rotor keeps the scene's absolute rotor spin\n"
     "  --json FILE            the analysis at --spin as JSON (- = standard output)\n"
     "  --sweep-alpha A0:A1:N  spectrum at N inclinations from A0 to A1 (0 < A0 <= A1 < pi/2, N in [1, 10000]), and\n"
     "                         alpha_c located where stability is lost (bisection along the slip branch from A0)\n"
     "  --sweep-spin W0:W1:N   spectrum at N shell spins from W0 to W1 (|W| <= 1e6, N in [1, 10000]) at the scene's\n"
-    "                         alpha, and the spin windows where nutation Re > 0 or any Re > 0\n"
+    "                         alpha, and the spin windows where nutation Re > 0 or any Re > 0 (a tippe top: any\n"
+    "                         Re > 0, next to Magnus' critical spin)\n"
     "  --plot FILE.png        draw the sweep(s) (python3 with matplotlib: scripts/plots/stability.py)\n"
     "Exit status: 0 ok; 1 JSON or plot not written; 2 bad scene or argument; 3 no sleeping state to analyse at the\n"
-    "scene's alpha and --spin (above alpha_c, or a top that does not move; the message says which).\n";
+    "scene's alpha and --spin (above alpha_c, or a top that does not move; the message says which), or no\n"
+    "spinning state (an inclined plane, mu(0) = 0, max_tilt < pi for the inverted one).\n";
 
 // Where the human-readable report goes: standard output, or standard error when the JSON goes there.
 std::ostream* report = &std::cout;
@@ -88,6 +96,7 @@ struct Arguments {
   std::string scene_path, json_path, plot_path;
   std::optional<double> spin;
   std::optional<Range> sweep_alpha, sweep_spin;
+  std::optional<SpinningState> state;
 };
 
 bool admissible_alpha(double a) { return a > 0.0 && a < M_PI / 2; }
@@ -103,7 +112,12 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
       return argv[++i];
     };
     if (a == "-h" || a == "--help") return false;
-    if (a == "--spin") {
+    if (a == "--state") {
+      const std::string text = value();
+      SpinningState st;
+      if (!top_sim::parse_spinning_state(text, st)) throw BadArgument{a + " = '" + text + "': must be upright or inverted"};
+      args.state = st;
+    } else if (a == "--spin") {
       const std::string text = value();
       const double w = number(a, text);
       if (w == 0.0 || !admissible_spin(w)) throw BadArgument{a + " = '" + text + "': must be nonzero and " + spin_range};
@@ -135,11 +149,31 @@ std::string complex_text(Eigenvalue v) {
   return os.str();
 }
 
+bool is_tippe_top(const top_sim::Scene& scene) { return scene.model.top.com_offset < 0.0; }
+
+// Magnus' critical spin of a spinning state and what it means (docs/analysis.md).
+std::string magnus_text(const top_sim::Model& model, SpinningState state) {
+  const double wk2 = top_sim::magnus_critical_spin_squared(model, state);
+  const bool below = state == SpinningState::upright;  // the centre of mass below the sphere's centre (a > 0)
+  std::ostringstream os;
+  os << std::setprecision(10) << "Magnus' critical spin (friction linear in the slip, docs/analysis.md): ";
+  if (std::isfinite(wk2) && wk2 > 0.0)
+    os << "omega_k = " << std::sqrt(wk2) << " rad/s: " << (below ? "stable below, unstable above" : "unstable below, stable above");
+  else
+    os << "omega_k^2 = " << wk2 << " <= 0: no crossing, " << (below ? "stable" : "unstable") << " at every spin";
+  return os.str();
+}
+
 // The single analysis, human-readable.
-void print_analysis(const top_sim::Model& model, const StabilityResult& r) {
-  (*report) << std::setprecision(7) << "sleeping state: alpha " << r.alpha << " rad, shell spin " << r.spin << " rad/s";
+void print_analysis(const top_sim::Model& model, const StabilityResult& r, std::optional<SpinningState> state) {
+  (*report) << std::setprecision(7);
+  if (state)
+    (*report) << "spinning " << top_sim::to_string(*state) << " state (f_hat = " << (*state == SpinningState::upright ? "+" : "-")
+              << "n, u = 0, v_t = 0, level plane): shell spin " << r.spin << " rad/s";
+  else
+    (*report) << "sleeping state: alpha " << r.alpha << " rad, shell spin " << r.spin << " rad/s";
   if (model.top.has_rotor) (*report) << ", rotor spin " << r.rotor_spin << " rad/s";
-  (*report) << ", s* " << r.slip << "\n";
+  (*report) << (state ? "\n" + magnus_text(model, *state) : ", s* " + num(r.slip)) << "\n";
   (*report) << "eigenvalues [1/s] of the Jacobian over u, f_hat (tangent plane), omega" << (model.top.has_rotor ? ", nu" : "")
             << ":\n  zero (free spin)  " << complex_text(r.zero) << "\n  precession        "
             << complex_text(r.modes.precession) << " (and conjugate)\n  nutation          "
@@ -160,9 +194,11 @@ void print_analysis(const top_sim::Model& model, const StabilityResult& r) {
 
 std::string pair_json(Eigenvalue v) { return "[" + num(v.real()) + ", " + num(v.imag()) + "]"; }
 
-std::string analysis_json(const StabilityResult& r) {
+std::string analysis_json(const StabilityResult& r, std::optional<SpinningState> state) {
   std::ostringstream os;
-  os << "{\n  \"eigenvalues\": [";
+  os << "{\n";
+  if (state) os << "  \"state\": \"" << top_sim::to_string(*state) << "\",\n";
+  os << "  \"eigenvalues\": [";
   for (std::size_t i = 0; i < r.eigenvalues.size(); ++i) os << (i ? ", " : "") << pair_json(r.eigenvalues[i]);
   os << "],\n  \"modes\": {\"precession\": " << pair_json(r.modes.precession)
      << ", \"nutation\": " << pair_json(r.modes.nutation) << ", \"friction\": [";
@@ -250,26 +286,30 @@ double report_alpha_c(const top_sim::Scene& scene, double spin, double alpha0) {
   return c.found ? c.alpha : NAN;
 }
 
-std::vector<SweepRow> sweep_spin(const top_sim::Scene& scene, const Range& range) {
+// The sleeping state's sweep over the shell spin, or a tippe top's spinning `state`'s.
+std::vector<SweepRow> sweep_spin(const top_sim::Scene& scene, const Range& range, std::optional<SpinningState> state) {
   std::vector<SweepRow> rows;
-  (*report) << "\nsweep over the shell spin [rad/s] at alpha " << scene.model.plane.inclination << " rad";
+  (*report) << "\nsweep over the shell spin [rad/s] ";
+  if (state) (*report) << "of the spinning " << top_sim::to_string(*state) << " state";
+  else (*report) << "at alpha " << scene.model.plane.inclination << " rad";
   if (scene.model.top.has_rotor) (*report) << ", rotor at " << scene.initial.rotor_spin << " rad/s";
   (*report) << " (eigenvalues in 1/s, times in s):\n";
   print_header("spin");
   for (int i = 0; i < range.count; ++i) {
     const double w = range.count == 1 ? range.from : range.from + (range.to - range.from) * i / (range.count - 1);
-    rows.push_back({"spin", top_sim::sleeping_stability(scene.model, w, scene.initial.rotor_spin)});
+    if (state)
+      rows.push_back({top_sim::to_string(*state),
+                      top_sim::spinning_stability(scene.model, *state, w, scene.initial.rotor_spin)});
+    else
+      rows.push_back({"spin", top_sim::sleeping_stability(scene.model, w, scene.initial.rotor_spin)});
     print_row(rows.back().r, w);
   }
   return rows;
 }
 
-// The windows where the watched real part is > 0; returned as "lo:hi,lo:hi" for the plot.
-std::string report_windows(const top_sim::Scene& scene, const Range& range, top_sim::WatchedMode watched,
-                           const char* what) {
-  const auto windows = top_sim::unstable_spin_windows(scene.model, scene.initial.rotor_spin, range.from, range.to,
-                                                      range.count, watched);
-  (*report) << std::setprecision(7) << "spin windows where " << what << " > 0 (edges bisected):";
+// Prints the windows; returns them as "lo:hi,lo:hi" for the plot.
+std::string windows_text(const std::vector<top_sim::SpinWindow>& windows, const char* what) {
+  (*report) << std::setprecision(10) << "spin windows where " << what << " > 0 (edges bisected):";
   std::string list;
   for (const auto& w : windows) {
     (*report) << " [" << w.lower << ", " << w.upper << "] (largest " << w.max_real << " 1/s at " << w.at_spin << ")";
@@ -277,6 +317,22 @@ std::string report_windows(const top_sim::Scene& scene, const Range& range, top_
   }
   (*report) << (windows.empty() ? " none" : "") << "\n";
   return list;
+}
+
+// The windows where the watched real part is > 0; returned as "lo:hi,lo:hi" for the plot.
+std::string report_windows(const top_sim::Scene& scene, const Range& range, top_sim::WatchedMode watched,
+                           const char* what) {
+  return windows_text(
+      top_sim::unstable_spin_windows(scene.model, scene.initial.rotor_spin, range.from, range.to, range.count, watched),
+      what);
+}
+
+// A tippe top's spinning state: where the largest Re but the zero one is > 0, and Magnus' critical spin.
+std::string report_spinning_windows(const top_sim::Scene& scene, const Range& range, SpinningState state) {
+  (*report) << magnus_text(scene.model, state) << "\n" << top_sim::to_string(state) << ": ";
+  return windows_text(top_sim::unstable_spin_windows(scene.model, state, scene.initial.rotor_spin, range.from, range.to,
+                                                     range.count, top_sim::WatchedMode::any),
+                      "the largest Re but the zero one");
 }
 
 void write_sweep_csv(std::ostream& os, const std::vector<SweepRow>& rows) {
@@ -314,6 +370,46 @@ bool load(const std::string& path, top_sim::Scene& scene) {
   return true;
 }
 
+// The spin sweep: the sleeping state's, or a tippe top's --state (both states without --state); the plot's options.
+void run_spin_sweep(const Arguments& args, const top_sim::Scene& scene, std::vector<SweepRow>& rows,
+                    std::vector<std::string>& extra) {
+  const Range& range = *args.sweep_spin;
+  if (!is_tippe_top(scene)) {
+    const auto spins = sweep_spin(scene, range, std::nullopt);
+    rows.insert(rows.end(), spins.begin(), spins.end());
+    extra.push_back("--nutation-windows=" + report_windows(scene, range, top_sim::WatchedMode::nutation, "Re nutation"));
+    report_windows(scene, range, top_sim::WatchedMode::any, "the largest Re but the zero one");
+    return;
+  }
+  const std::vector<SpinningState> states =
+      args.state ? std::vector<SpinningState>{*args.state}
+                 : std::vector<SpinningState>{SpinningState::upright, SpinningState::inverted};
+  for (const SpinningState state : states) {
+    const auto spins = sweep_spin(scene, range, state);
+    rows.insert(rows.end(), spins.begin(), spins.end());
+    const std::string name = top_sim::to_string(state);
+    extra.push_back("--windows-" + name + "=" + report_spinning_windows(scene, range, state));
+    const double wk2 = top_sim::magnus_critical_spin_squared(scene.model, state);
+    extra.push_back("--magnus-" + name + "=" + num(std::isfinite(wk2) && wk2 > 0.0 ? std::sqrt(wk2) : NAN));
+  }
+}
+
+// The --state rules (docs/interfaces.md): "" when the arguments fit the scene's top, else the message.
+std::string state_argument_error(const Arguments& args, const top_sim::Scene& scene) {
+  const std::string f = num(scene.model.top.com_offset);
+  if (args.state && !is_tippe_top(scene))
+    return "--state = '" + std::string(top_sim::to_string(*args.state)) + "': only for a tippe top (top.com_offset " +
+           "< 0); this top's com_offset is " + f + " m (without --state: its sleeping state)";
+  if (!is_tippe_top(scene)) return "";
+  if (args.sweep_alpha)
+    return "--sweep-alpha: not for a tippe top (top.com_offset = " + f + " m < 0): its spinning states are " +
+           "equilibria on a level plane only; use --state upright|inverted and --sweep-spin";
+  if (!args.state && (!args.sweep_spin || !args.json_path.empty()))
+    return "a tippe top (top.com_offset = " + f + " m < 0) has no sleeping state: give --state upright|inverted " +
+           "(--sweep-spin alone sweeps both states)";
+  return "";
+}
+
 // The sweeps, their reports and the plot; false when the plot could not be written.
 bool run_sweeps(const Arguments& args, const top_sim::Scene& scene, double spin) {
   std::vector<SweepRow> rows;
@@ -324,13 +420,7 @@ bool run_sweeps(const Arguments& args, const top_sim::Scene& scene, double spin)
     extra.insert(extra.end(), {"--alpha-c=" + num(located),
                                "--alpha-c-analytic=" + num(top_sim::critical_inclination(scene.model.friction))});
   }
-  if (args.sweep_spin) {
-    const auto spins = sweep_spin(scene, *args.sweep_spin);
-    rows.insert(rows.end(), spins.begin(), spins.end());
-    extra.push_back("--nutation-windows=" +
-                    report_windows(scene, *args.sweep_spin, top_sim::WatchedMode::nutation, "Re nutation"));
-    report_windows(scene, *args.sweep_spin, top_sim::WatchedMode::any, "the largest Re but the zero one");
-  }
+  if (args.sweep_spin) run_spin_sweep(args, scene, rows, extra);
   if (args.plot_path.empty()) return true;
   char dir_template[] = "/tmp/top_sim_stability_XXXXXX";
   const char* dir = mkdtemp(dir_template);
@@ -363,16 +453,23 @@ int main(int argc, char** argv) {
     std::cerr << "top_sim_stability: the scene's initial.spin is 0: give a nonzero --spin\n";
     return 2;
   }
+  if (const std::string why = state_argument_error(args, scene); !why.empty()) {
+    std::cerr << "top_sim_stability: " << why << "\n" << kUsage;
+    return 2;
+  }
   if (args.json_path == "-") report = &std::cerr;
   (*report) << "scene: " << scene.source << "\n";
-  const StabilityResult r = top_sim::sleeping_stability(scene.model, spin, scene.initial.rotor_spin);
+  if (is_tippe_top(scene) && !args.state) return run_sweeps(args, scene, spin) ? 0 : 1;  // both states' sweeps
+  const StabilityResult r =
+      args.state ? top_sim::spinning_stability(scene.model, *args.state, spin, scene.initial.rotor_spin)
+                 : top_sim::sleeping_stability(scene.model, spin, scene.initial.rotor_spin);
   bool written = true;
   if (r.exists) {
-    print_analysis(scene.model, r);
-    if (!args.json_path.empty()) written = write_text(args.json_path, analysis_json(r), "--json");
+    print_analysis(scene.model, r, args.state);
+    if (!args.json_path.empty()) written = write_text(args.json_path, analysis_json(r, args.state), "--json");
   } else {
-    std::cerr << "top_sim_stability: no sleeping state to analyse at alpha " << num(r.alpha) << " rad, spin "
-              << num(spin) << " rad/s: " << r.reason << "\n";
+    std::cerr << "top_sim_stability: no " << (args.state ? "spinning " + std::string(top_sim::to_string(*args.state)) : "sleeping")
+              << " state to analyse at alpha " << num(r.alpha) << " rad, spin " << num(spin) << " rad/s: " << r.reason << "\n";
   }
   written = run_sweeps(args, scene, spin) && written;
   if (!r.exists) return 3;
