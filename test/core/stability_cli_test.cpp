@@ -5,6 +5,7 @@
 
 #include <boost/property_tree/json_parser.hpp>
 #include <boost/property_tree/ptree.hpp>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -106,6 +107,74 @@ TEST(StabilityCli, SweepsReportAlphaCAndTheGyrostatWindow) {
   r = run(scene("gyro_reversal") + " --sweep-spin -1:1:21");
   ASSERT_EQ(r.exit_code, 0) << r.err;
   EXPECT_TRUE(contains(r.out, "spin windows where Re nutation > 0 (edges bisected): [-0.55189")) << r.out;
+}
+
+// A tippe top (docs/interfaces.md): --state's errors exit 2 naming option and value, an inclined plane exits 3.
+TEST(StabilityCli, StateErrorsNameTheOptionAndValue) {
+  struct Case {
+    std::string scene, args, says, allowed;
+    int exit_code;
+  };
+  const Case cases[] = {
+      {"tippe_top", " --state sideways", "--state = 'sideways'", "upright or inverted", 2},
+      {"default", " --state upright", "--state = 'upright'", "only for a tippe top (top.com_offset < 0)", 2},
+      {"tippe_top", "", "top.com_offset = -0.005", "give --state upright|inverted", 2},
+      {"tippe_top", " --sweep-alpha 0.1:0.2:3", "--sweep-alpha", "level plane only", 2},
+  };
+  for (const Case& c : cases) {
+    const CliResult r = run(scene(c.scene) + c.args);
+    EXPECT_EQ(r.exit_code, c.exit_code) << c.args << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, c.says)) << c.args << "\n" << r.err;
+    EXPECT_TRUE(contains(r.err, c.allowed)) << c.args << "\n" << r.err;
+  }
+  const std::string tilted = scratch() + "/tilted_tippe.yaml";
+  std::ofstream(tilted) << "top: {mass: 0.015, tip_radius: 0.025, com_offset: -0.005, "
+                                            "inertia_axial: 3.75e-6, inertia_transverse: 3.75e-6, max_tilt: 3.14159}\n"
+                                            "plane: {inclination: 0.1}\nfriction: {law: coulomb, mu: 0.3, "
+                                            "regularization_speed: 1.0e-2}\ninitial: {spin: 100.0}\n";
+  const CliResult r = run("'" + tilted + "' --state upright");
+  EXPECT_EQ(r.exit_code, 3) << r.err;
+  EXPECT_TRUE(contains(r.err, "plane.inclination = 0.1 rad")) << r.err;
+  EXPECT_TRUE(contains(r.err, "(plane.inclination 0)")) << r.err;
+}
+
+// The JSON of a spinning state: the documented fields plus "state"; the verdicts on both sides of Magnus' critical
+// spins (tippe_top.yaml: omega_k^2 = m g a / c = 627.84 upright, 1412.64 inverted, docs/analysis.md).
+TEST(StabilityCli, SpinningStateJsonAndVerdicts) {
+  struct Case {
+    std::string state;
+    double spin;
+    bool stable;
+  };
+  const Case cases[] = {{"upright", 20.0, true}, {"upright", 30.0, false}, {"inverted", 30.0, false},
+                        {"inverted", 45.0, true}};
+  for (const Case& c : cases) {
+    const CliResult r = run(scene("tippe_top") + " --state " + c.state + " --spin " + std::to_string(c.spin) + " --json -");
+    ASSERT_EQ(r.exit_code, 0) << r.err;
+    pt::ptree j;
+    std::istringstream in(r.out);
+    ASSERT_NO_THROW(pt::read_json(in, j)) << r.out;
+    std::set<std::string> keys;
+    for (const auto& kv : j) keys.insert(kv.first);
+    EXPECT_EQ(keys, (std::set<std::string>{"state", "eigenvalues", "modes", "stable", "relaxation_time", "spin", "alpha"}));
+    EXPECT_EQ(j.get<std::string>("state"), c.state);
+    EXPECT_EQ(j.get<std::string>("stable"), c.stable ? "true" : "false") << c.state << " " << c.spin;
+    EXPECT_EQ(j.get_child("eigenvalues").size(), 7u);
+    EXPECT_TRUE(contains(r.err, "Magnus' critical spin")) << r.err;
+  }
+}
+
+// --sweep-spin without --state sweeps both states; each crossing within 1e-6 of Magnus' omega_k.
+TEST(StabilityCli, SweepSpinOfATippeTopLocatesBothCrossings) {
+  const CliResult r = run(scene("tippe_top") + " --sweep-spin 0:100:21");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  auto edge = [&r](const std::string& prefix) {
+    const std::size_t at = r.out.find(prefix);
+    return at == std::string::npos ? NAN : std::stod(r.out.substr(at + prefix.size()));
+  };
+  const std::string windows = ": spin windows where the largest Re but the zero one > 0 (edges bisected): [";
+  EXPECT_NEAR(edge("upright" + windows) / std::sqrt(627.84), 1.0, 1e-6) << r.out;
+  EXPECT_NEAR(edge("inverted" + windows + "0, ") / std::sqrt(1412.64), 1.0, 1e-6) << r.out;
 }
 
 TEST(StabilityCli, PlotWritesAPng) {
