@@ -2,7 +2,8 @@
 # Regenerates every figure and table of docs/results.md from the project's own tools:
 # builds top_sim_run and top_sim_sweep (plain CMake, Release, -j2), runs the scenes and sweeps, thins the
 # CSV files into docs/data/, draws docs/img/fig*.png with Debian's python3-matplotlib, and rewrites the
-# phi* tables of docs/results.md; and docs/img/stability_*.png of docs/analysis.md (top_sim_stability).
+# phi* tables of docs/results.md; and docs/img/stability_*.png, tippe_stability_sweep.png of docs/analysis.md
+# (top_sim_stability).
 #
 #   bash scripts/make_figures.sh
 #
@@ -92,5 +93,8 @@ if [ -x "$BIN/top_sim_stability" ]; then
      --sweep-alpha 0.005:0.244:48 --plot "$IMG/stability_alpha.png" >/dev/null)
   (cd "$REPO" && TOP_SIM_PLOTS_DIR=$PLOTS "$BIN/top_sim_stability" config/scenes/gyro_reversal.yaml \
      --sweep-spin -2:2:81 --plot "$IMG/stability_gyro.png" >/dev/null)
+  log "stability: the tippe top's spinning upright and inverted states against the spin"
+  (cd "$REPO" && TOP_SIM_PLOTS_DIR=$PLOTS "$BIN/top_sim_stability" config/scenes/tippe_top.yaml \
+     --sweep-spin 0:100:201 --plot "$IMG/tippe_stability_sweep.png" >/dev/null)
 fi
 log "done: $IMG/fig*.png, $DATA/*.csv, tables in docs/results.md"

@@ -76,11 +76,11 @@ def spinning_panel(ax, d, sweeps, windows, magnus, letter):
             ax.axvline(magnus[state], color=colour, ls="--", lw=0.9,
                        label=f"{state}: Magnus omega_k = {magnus[state]:.8g} rad/s")
     ax.axhline(0.0, color="k", lw=0.6)
-    ax.set_yscale("symlog", linthresh=1e-3)
+    ax.set_yscale("symlog", linthresh=1e-4)  # every value of a state away from its crossing is above 1e-4 in size
     ax.set_xlabel("spin about the figure axis [rad/s]")
     ax.set_ylabel("largest Re(lambda) [1/s] (symlog; > 0 unstable)")
     ax.set_title(f"{letter}the tippe top's spinning states against the spin")
-    ax.legend(fontsize=7, loc="lower right")
+    ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)  # below: the curves fill the box
 
 
 def main():
@@ -100,7 +100,8 @@ def main():
     kinds = [k for k in ("alpha", "spin") if (sweeps == k).any()]
     if ((sweeps == "upright") | (sweeps == "inverted")).any():
         kinds.append("spinning")
-    fig, axes = plt.subplots(1, len(kinds), figsize=(6.5 * len(kinds), 4.6), squeeze=False)
+    height = 5.6 if "spinning" in kinds else 4.6  # room for the spinning panel's legend below it
+    fig, axes = plt.subplots(1, len(kinds), figsize=(6.5 * len(kinds), height), squeeze=False)
     for k, (ax, kind) in enumerate(zip(axes[0], kinds)):
         rows = {key: (np.asarray(v)[sweeps == kind]) for key, v in d.items()}
         letter = f"{'ab'[k]}) " if len(kinds) > 1 else ""
