@@ -2,8 +2,8 @@
 # Regenerates every figure and table of docs/results.md from the project's own tools:
 # builds top_sim_run and top_sim_sweep (plain CMake, Release, -j2), runs the scenes and sweeps, thins the
 # CSV files into docs/data/, draws docs/img/fig*.png with Debian's python3-matplotlib, and rewrites the
-# phi* tables of docs/results.md; and docs/img/stability_*.png, tippe_stability_sweep.png of docs/analysis.md
-# (top_sim_stability).
+# phi* tables of docs/results.md; docs/img/stability_*.png, tippe_stability_sweep.png of docs/analysis.md
+# (top_sim_stability); and docs/img/tippe_top_tilt.png of docs/physics.md section 11.
 #
 #   bash scripts/make_figures.sh
 #
@@ -78,12 +78,20 @@ log "fig3: config/scenes/gyro_reversal.yaml"
 python3 "$PLOTS/reduce_csv.py" "$RAW/fig3.csv" "$DATA/fig3_gyro_reversal.csv" \
   --columns t,contact_x,contact_y,u_x,u_y,spin,rotor_spin,phi,regime
 
+# ---- physics.md section 11: the tippe top's tilt (Cohen's sphere and its prolate variant) -----------------
+for scene in tippe_top tippe_top_tumbling; do
+  log "tippe top: config/scenes/$scene.yaml"
+  "$RUN" "$REPO/config/scenes/$scene.yaml" --duration 20 --rate 100 --csv "$RAW/$scene.csv"
+  python3 "$PLOTS/reduce_csv.py" "$RAW/$scene.csv" "$DATA/$scene.csv" --digits 7 --columns t,f_z,omega_z,spin,s,regime
+done
+
 # ---- figures and tables ---------------------------------------------------------------------------------
 log "plots"
 python3 "$PLOTS/fig4_tan_half_phi.py" "$DATA" "$IMG/fig4_tan_half_phi.png"
 python3 "$PLOTS/fig5_linearized.py" "$DATA" "$IMG/fig5_linearized.png"
 python3 "$PLOTS/fig2_spins.py" "$DATA" "$IMG/fig2_spins.png"
 python3 "$PLOTS/fig3_gyro.py" "$DATA" "$IMG/fig3_gyro_reversal.png"
+python3 "$PLOTS/tippe_top_tilt.py" "$DATA" "$IMG/tippe_top_tilt.png"
 python3 "$PLOTS/phi_table.py" "$DATA" "$REPO/docs/results.md"
 
 # ---- docs/analysis.md: linear stability of the sleeping state -------------------------------------------
