@@ -103,10 +103,10 @@ MujocoTop::~MujocoTop() {
   mj_deleteModel(m_);
 }
 
-void MujocoTop::set_timestep(double dt) {
+void MujocoTop::set_timestep(double dt, double time_constant) {
   m_->opt.timestep = dt;
   for (int i = 0; i < m_->ngeom; ++i) {
-    m_->geom_solref[mjNREF * i] = 2.0 * dt;
+    m_->geom_solref[mjNREF * i] = std::max(2.0 * dt, time_constant);
     m_->geom_solref[mjNREF * i + 1] = 1.0;
   }
 }

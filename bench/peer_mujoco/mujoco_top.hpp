@@ -37,8 +37,9 @@ class MujocoTop {
   MujocoTop(const MujocoTop&) = delete;
   MujocoTop& operator=(const MujocoTop&) = delete;
 
-  // RK4 step dt and the stiffest contact MuJoCo allows at it: solref time constant 2 dt, damping ratio 1.
-  void set_timestep(double dt);
+  // RK4 step dt and the stiffest contact MuJoCo allows at it: solref time constant 2 dt, damping ratio 1
+  // (a larger time constant: a softer contact, for the study of where MuJoCo's error comes from).
+  void set_timestep(double dt, double time_constant = 0.0);
   // Runs from the initial state to T; the in-plane contact point every `interval` (a multiple of dt), from t = 0.
   std::vector<Eigen::Vector2d> run(double T, double interval);
   InitialReport initial_report();
