@@ -94,7 +94,8 @@ FreeBodyState initial_free_body(const top_sim::Scene& scene) {
 MujocoTop::MujocoTop(const top_sim::Scene& scene) : scene_(scene) {
   m_ = compile(mjcf(scene, 1e-3));
   d_ = mj_makeData(m_);
-  if (m_->nq != 7 || m_->nv != 6 || m_->ngeom != 2) throw std::logic_error("MuJoCo: not the one free body and two geoms");
+  if (m_->nq != 7 || m_->nv != 6 || m_->ngeom != 2)
+    throw std::logic_error("MuJoCo: not the one free body and two geoms");
   set_timestep(1e-3);
 }
 

@@ -233,12 +233,26 @@ void print_rungs(const std::vector<Rung>& rungs, const Reference& ref) {
   }
 }
 
-const char* resolved(const Rung& r, const Reference& ref) { return r.err_max <= kResolved * ref.nutation_pp ? "yes" : "no"; }
+// "median (min-max)" of the per-repetition ratios a[i] / b[i] (the rungs ran side by side in repetition i).
+std::string ratio_text(const std::vector<double>& a, const std::vector<double>& b) {
+  std::vector<double> r;
+  for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) r.push_back(a[i] / b[i]);
+  if (r.empty()) return "-";
+  char buf[64];
+  std::snprintf(buf, sizeof buf, "%.0fx (%.0f-%.0f)", median(r), *std::min_element(r.begin(), r.end()),
+                *std::max_element(r.begin(), r.end()));
+  return buf;
+}
+
+const char* resolved(const Rung& r, const Reference& ref) {
+  return r.err_max <= kResolved * ref.nutation_pp ? "yes" : "no";
+}
 
 void print_ratios(const std::vector<Rung>& rungs, const Reference& ref) {
-  std::printf("\n| MuJoCo dt | its max error [mm] | its CPU [ms] | cheapest top_sim at <= that error | its max error [mm] | "
-              "its CPU [ms] (to 5 s, no samples) | ratio (no samples) | ratio (500 samples) | nutation resolved "
-              "(MuJoCo / top_sim) |\n|---|---|---|---|---|---|---|---|---|\n");
+  std::printf("\n| MuJoCo dt | its max error [mm] | its CPU [ms] | cheapest top_sim at <= that error | "
+              "its max error [mm] | its CPU [ms] to 5 s, no samples (500 samples) | ratio, no samples: median "
+              "(min-max) over repetitions | ratio, 500 samples | nutation resolved (MuJoCo / top_sim) |\n"
+              "|---|---|---|---|---|---|---|---|---|\n");
   for (const Rung& m : rungs) {
     if (!m.mujoco) continue;
     const Rung* t = std::isfinite(m.err_max) ? cheapest_at(rungs, m.err_max) : nullptr;
@@ -247,9 +261,9 @@ void print_ratios(const std::vector<Rung>& rungs, const Reference& ref) {
                   fmt("%.3g", 1e3 * median(m.cpu)).c_str());
       continue;
     }
-    std::printf("| %g | %.3g | %.3g | rtol %g | %.3g | %.3g (%.3g) | **%.0fx** | %.0fx | %s / %s |\n", m.setting,
+    std::printf("| %g | %.3g | %.3g | rtol %g | %.3g | %.3g (%.3g) | **%s** | %s | %s / %s |\n", m.setting,
                 1e3 * m.err_max, 1e3 * median(m.cpu), t->setting, 1e3 * t->err_max, 1e3 * median(t->cpu_to_T),
-                1e3 * median(t->cpu), median(m.cpu) / median(t->cpu_to_T), median(m.cpu) / median(t->cpu),
+                1e3 * median(t->cpu), ratio_text(m.cpu, t->cpu_to_T).c_str(), ratio_text(m.cpu, t->cpu).c_str(),
                 resolved(m, ref), resolved(*t, ref));
   }
 }
@@ -259,8 +273,8 @@ void write_csv(const std::string& file, const std::vector<Rung>& rungs) {
   csv << "peer,setting,steps,mode_switches,err_max_m,err_final_m,penetration_m,repetition,cpu_s,cpu_to_T_s\n";
   for (const Rung& r : rungs)
     for (std::size_t i = 0; i < r.cpu.size(); ++i)
-      csv << (r.mujoco ? "mujoco_rk4" : "top_sim_dopri5") << "," << r.setting << "," << r.steps << "," << r.switches << "," << r.err_max
-          << "," << r.err_final << "," << r.penetration << "," << i << "," << r.cpu[i] << ","
+      csv << (r.mujoco ? "mujoco_rk4" : "top_sim_dopri5") << "," << r.setting << "," << r.steps << "," << r.switches
+          << "," << r.err_max << "," << r.err_final << "," << r.penetration << "," << i << "," << r.cpu[i] << ","
           << (r.mujoco ? NAN : r.cpu_to_T[i]) << "\n";
 }
 
@@ -333,11 +347,26 @@ int softness(const Scene& scene) {
   return 0;
 }
 
+const char* kUsage = "usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]";
+
 struct Options {
   std::string config = TOP_SIM_PEER_CONFIG_DIR, csv;
   int reps = 5;
   bool check = false, print_mjcf = false, softness = false;
 };
+
+int repetitions(const std::string& text) {
+  std::size_t used = 0;
+  int n = 0;
+  try {
+    n = std::stoi(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used != text.size() || n < 1 || n > 1000)
+    throw std::invalid_argument("--reps: '" + text + "' is not allowed; must be an integer in [1, 1000]");
+  return n;
+}
 
 Options parse(int argc, char** argv) {
   Options o;
@@ -346,14 +375,12 @@ Options parse(int argc, char** argv) {
     const bool has_value = i + 1 < argc;
     if (a == "--config" && has_value) o.config = argv[++i];
     else if (a == "--csv" && has_value) o.csv = argv[++i];
-    else if (a == "--reps" && has_value) o.reps = std::stoi(argv[++i]);
+    else if (a == "--reps" && has_value) o.reps = repetitions(argv[++i]);
     else if (a == "--check") o.check = true;
     else if (a == "--mjcf") o.print_mjcf = true;
     else if (a == "--softness") o.softness = true;
-    else throw std::invalid_argument("usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]");
+    else throw std::invalid_argument(kUsage);
   }
-  if (o.reps < 1 || o.reps > 1000)
-    throw std::invalid_argument("--reps: " + std::to_string(o.reps) + " is out of range; must be in [1, 1000]");
   return o;
 }
 
