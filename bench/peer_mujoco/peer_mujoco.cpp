@@ -320,7 +320,8 @@ int check(const Scene& scene) {
   const double slide = com_slide(with_rtol(scene, 1e-12)), exact = -0.5 * scene.model.plane.gravity *
                                                                    std::sin(scene.model.plane.inclination) * kT * kT;
   ok &= expect(std::abs(slide - exact) < 1e-8, "the reference's centre of mass slid " + fmt("%.10f", slide) +
-                                                   " m downhill; 0.5 g sin(alpha) T^2 = " + fmt("%.10f", exact));
+                                                   " m; 0.5 g sin(alpha) T^2 = " + fmt("%.10f", exact) + " (off by " +
+                                                   fmt("%.2g", std::abs(slide - exact)) + " m, < 1e-8)");
   mj.set_timestep(1e-3);
   const double e = max_distance(mj.run(kT, kInterval), ref);
   ok &= expect(e < 2e-4, "MuJoCo RK4 dt 1e-3 agrees with the reference to " + fmt("%.3g", e) + " m (< 0.2 mm)");
