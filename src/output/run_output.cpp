@@ -158,6 +158,14 @@ void set_phi_star(const StationaryState& st, std::optional<double>& phi_star, st
 
 namespace {
 
+// Per-name seconds of the run: the simulator's counts now less those at its start.
+template <std::size_t N>
+std::array<double, N> since(const std::array<double, N>& start, const std::array<double, N>& now) {
+  std::array<double, N> d{};
+  for (std::size_t i = 0; i < N; ++i) d[i] = now[i] - start[i];
+  return d;
+}
+
 // The samples' summary, with the run's end when the last sample is before it (not passed to on_sample).
 SampledSummary with_end(SummaryAccumulator& samples, const Simulator& sim) {
   if (sim.time() > samples.t_last()) samples.add(sim.snapshot());
@@ -168,8 +176,7 @@ SampledSummary with_end(SummaryAccumulator& samples, const Simulator& sim) {
 
 RunResult run(Simulator& sim, const RunOptions& opt) {
   RunResult r;
-  const double t0 = sim.time();
-  const double t_end = t0 + opt.duration;
+  const double t0 = sim.time(), t_end = t0 + opt.duration;
   const double t_mark = mark_time(t0, t_end);
   const double cpu0 = thread_cpu_seconds();
   std::optional<Eigen::Vector2d> mark;
@@ -217,10 +224,8 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   r.cpu_seconds = thread_cpu_seconds() - cpu0;
   if (sampling) r.sampled = with_end(sampled, sim);
   r.mode_switch_count = sim.mode_switch_count() - switches0;
-  const std::array<double, kContactModeCount> seconds1 = sim.mode_seconds();
-  for (int i = 0; i < kContactModeCount; ++i) r.mode_seconds[i] = seconds1[i] - seconds0[i];
-  const std::array<double, kRegimeCount> regime_seconds1 = sim.regime_seconds();
-  for (int i = 0; i < kRegimeCount; ++i) r.regime_seconds[i] = regime_seconds1[i] - regime_seconds0[i];
+  r.mode_seconds = since(seconds0, sim.mode_seconds());
+  r.regime_seconds = since(regime_seconds0, sim.regime_seconds());
   r.sim_seconds = sim.time() - t0;
   r.final = sim.snapshot();
   r.stats = sim.stats();
