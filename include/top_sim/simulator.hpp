@@ -82,8 +82,8 @@ class Simulator {
   // interval [t_k, t_k+1) counts for the regime at t_k, so the shares depend on no reader and on no slicing.
   std::array<double, kRegimeCount> regime_seconds() const;
   // The regime's own clock: classified at t_reset + k kRegimeCadence on the dense output, whoever reads. 0.1 s
-  // resolves the regimes' changes (nutation dies in seconds, precession in tens: physics.md section 10) and costs
-  // one analysis per 0.1 s (3000 in the default 300 s run: about 3 % of its CPU time).
+  // resolves the regimes' changes (nutation dies in seconds, precession in tens: physics.md section 10) for one
+  // dynamics evaluation, the indicators and the energy per point (no stationary solve, no sample).
   static constexpr double kRegimeCadence = 0.1;
   static constexpr std::size_t kMaxPendingSwitches = 100000;
   // Steps made by rosenbrock4 across the stiff slip-onset layer (included in stats()).
@@ -129,6 +129,7 @@ class Simulator {
   std::uint64_t cadence_k_ = 0;
   Regime cadence_regime_ = Regime::nutating;
   std::array<double, kRegimeCount> regime_seconds_{};
+  StationaryState model_stationary_;  // solved at reset and commands: its existence and unstable root (no spin)
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_

@@ -77,6 +77,17 @@ const char* overflowed_part(const SampleAnalysis& a) {
   return nullptr;
 }
 
+// What a regime cadence point needs of a state: the dynamics, the indicators and the energy, with no stationary
+// solve: the indicators read only the model's answer (exists, slip_unstable), which no spin changes.
+SampleAnalysis cadence_analysis(const Model& model, ContactMode mode, const StateVector& y,
+                                const StationaryState& model_stationary) {
+  SampleAnalysis a;
+  evaluate_dynamics(model, mode, y, a.dynamics);
+  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
+  a.energy = mechanical_energy(model, y);
+  return a;
+}
+
 std::string stalled_message(double t) {
   return describe(ContactFault::numerical, 0.0, t) + " (" + std::to_string(kMaxStalledSteps) +
          " steps too small to change t = " + format_number(t) + " s: the motion is too fast for the time's resolution)";
@@ -137,6 +148,7 @@ void Simulator::reset() {
   mode_since_ = t_;
   restart_stepper(true);
   invalidate_sample();
+  model_stationary_ = stationary_state(model_, shell_spin(y_));
   // The regime cadence restarts here: its first point is the initial state, classified from nutating.
   cadence_t_ = t_;
   cadence_k_ = 0;
@@ -241,6 +253,7 @@ void Simulator::apply_pending() {
     for (const Command& c : due) apply_now(c);
   }
   invalidate_sample();
+  model_stationary_ = stationary_state(model_, shell_spin(y_));  // the inclination or the law may have changed
   reclose_contact();
   restart_stepper(true);
 }
@@ -479,7 +492,7 @@ void Simulator::run_cadence(double t_end) {
 // One cadence point: the overflow guard (a run nobody reads still stops) and the classification that carries the
 // hysteresis; the interval since the last point counts for that point's regime.
 void Simulator::cadence_point(double t, const StateVector& y) {
-  const SampleAnalysis a = analyse_sample(model_, mode_, y);
+  const SampleAnalysis a = cadence_analysis(model_, mode_, y, model_stationary_);
   // A finite state whose energy or dynamics overflow (spins ~1e150 rad/s and up) is no answer either.
   if (const char* part = overflowed_part(a)) {
     y_ = y;  // the top stops at the point that overflowed

@@ -54,9 +54,8 @@ TEST(Counters, RightHandSidesPerDopri5Step) {
   }
 }
 
-// Stepping allocates nothing: one advance over many steps makes at most one allocation per regime cadence point it
-// crosses (the cadence's stationary solve keeps a root list for some laws: Coulomb here), 10 in 1 s, and builds no
-// sample at its end.
+// Stepping allocates nothing: one advance over many steps (and 10 regime cadence points) allocates nothing and
+// builds no sample at its end (a sample's stationary solve may allocate a root list for some laws).
 TEST(Counters, NoHeapAllocationWhileStepping) {
   for (const char* scene : {"default.yaml", "hopping.yaml", "coulomb.yaml"}) {
     std::unique_ptr<top_sim::Simulator> sim(warmed(scene));
@@ -66,28 +65,32 @@ TEST(Counters, NoHeapAllocationWhileStepping) {
     const std::uint64_t allocations = g_allocations - before;
     ASSERT_TRUE(ok) << scene;
     ASSERT_GT(sim->stats().steps - steps_before, 100u) << scene;
-    EXPECT_LE(allocations, 10u) << scene << ": " << allocations << " allocations in "
+    EXPECT_EQ(allocations, 0u) << scene << ": " << allocations << " allocations in "
                                << sim->stats().steps - steps_before << " steps";
   }
 }
 
-// Advancing builds no sample: with no reader, 1000 advances of 1 ms make exactly one analysis (with its one stationary
-// solve) per regime cadence point they cross, and none otherwise; the stationary solves of an unread run are
-// therefore bounded by 1 / kRegimeCadence per simulated second. The first read analyses once, a second read of the
-// same state reuses it, and the next advance discards it.
+// Advancing builds no sample: with no reader, 1000 advances of 1 ms (10 regime cadence points) make no sample
+// analysis and no stationary solve (the cadence classifies with the model's stationary answer, solved at reset and
+// at commands only). The first read analyses once, a second read of the same state reuses it, and the next advance
+// discards it.
 TEST(Counters, NoSampleWithoutAReader) {
   for (const char* scene : {"default.yaml", "hopping.yaml"}) {
     std::unique_ptr<top_sim::Simulator> sim(warmed(scene));
     top_sim::WorkCounters& counters = top_sim::work_counters();
     const double t0 = sim->time(), dt = top_sim::Simulator::kRegimeCadence;
     const std::uint64_t analyses0 = counters.sample_analyses, solves0 = counters.stationary_solves;
+    const auto seconds0 = sim->regime_seconds();
     for (int k = 1; k <= 1000; ++k) ASSERT_TRUE(sim->advance_to(t0 + 1e-3 * k)) << scene;
     // Cadence points t_origin + j dt in (t0, t0 + 1 s]: t_origin is 0 (no reset since construction).
     std::uint64_t crossed = 0;
     for (int j = 1; j * dt <= sim->time(); ++j) crossed += j * dt > t0 ? 1 : 0;
     ASSERT_EQ(crossed, 10u) << scene;
-    EXPECT_EQ(counters.sample_analyses - analyses0, crossed) << scene;
-    EXPECT_EQ(counters.stationary_solves - solves0, crossed) << scene;
+    double classified = 0.0;  // the cadence did run: the regime seconds moved on by the second advanced
+    for (int r = 0; r < top_sim::kRegimeCount; ++r) classified += sim->regime_seconds()[r] - seconds0[r];
+    EXPECT_NEAR(classified, 1.0, 1e-9) << scene;
+    EXPECT_EQ(counters.sample_analyses - analyses0, 0u) << scene;
+    EXPECT_EQ(counters.stationary_solves - solves0, 0u) << scene;
     const std::uint64_t analyses1 = counters.sample_analyses;
     const top_sim::Snapshot first = sim->snapshot();
     const top_sim::Snapshot second = sim->snapshot();
