@@ -59,14 +59,16 @@ class Simulator {
   // The model in force: the scene's, as changed by the commands applied since the last reset.
   const Model& model() const { return model_; }
   const Scene& scene() const { return scene_; }
-  // Every derived quantity of the current state, from the sample made at the end of the last advance or reset
-  // (no dynamics evaluation, no classification here).
+  // Every derived quantity of the current state. Advancing builds no sample: the first read after a change of the
+  // state, time, model or mode analyses it (one dynamics evaluation, one stationary solve, the indicators, the
+  // energy) and caches it; the regime is that state's classification with the hysteresis of the last regime
+  // cadence point (never committed by a read).
   Snapshot snapshot() const;
   const StepperStats& stats() const { return stepper_->stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
-  // The analytic sleeping state for the current alpha and shell spin (solved once per sample).
-  const StationaryState& stationary() const { return sample_.stationary; }
+  // The analytic sleeping state for the current alpha and shell spin (solved on the first read, then cached).
+  const StationaryState& stationary() const { return sample().stationary; }
   double max_energy_residual() const { return max_residual_; }
 
   ContactMode contact_mode() const { return mode_; }
@@ -76,6 +78,13 @@ class Simulator {
   // kMaxPendingSwitches are held; mode_switch_count() counts all since the reset.
   std::vector<ModeSwitch> take_mode_switches();
   std::uint64_t mode_switch_count() const { return switch_count_; }
+  // Simulated seconds in each regime since the last reset (index: Regime), classified on the regime cadence: each
+  // interval [t_k, t_k+1) counts for the regime at t_k, so the shares depend on no reader and on no slicing.
+  std::array<double, kRegimeCount> regime_seconds() const;
+  // The regime's own clock: classified at t_reset + k kRegimeCadence on the dense output, whoever reads. 0.1 s
+  // resolves the regimes' changes (nutation dies in seconds, precession in tens: physics.md section 10) for one
+  // dynamics evaluation, the indicators and the energy per point (no stationary solve, no sample).
+  static constexpr double kRegimeCadence = 0.1;
   static constexpr std::size_t kMaxPendingSwitches = 100000;
   // Steps made by rosenbrock4 across the stiff slip-onset layer (included in stats()).
   std::uint64_t layer_steps() const { return stepper_->layer_steps(); }
@@ -92,7 +101,10 @@ class Simulator {
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
   void stop_at_step_start(const std::string& detail);
-  void update_sample();
+  const SampleAnalysis& sample() const;
+  void invalidate_sample() { sample_valid_ = false; }
+  void run_cadence(double t_end);
+  void cadence_point(double t, const StateVector& y);
   bool in_stiff_layer(const StateVector& y, bool inside) const;
 
   Scene scene_;
@@ -108,8 +120,16 @@ class Simulator {
   double max_residual_ = 0.0;
   ContactFault fault_ = ContactFault::none;
   std::string fault_message_;
-  Regime regime_ = Regime::nutating;  // at the end of the last advance: the hysteresis of classify()
-  SampleAnalysis sample_;             // of the state at the end of the last advance or reset
+  // The lazy sample of (y_, t_, model_, mode_): valid until one of them changes (single owning thread).
+  mutable SampleAnalysis sample_;
+  mutable Regime sample_regime_ = Regime::nutating;
+  mutable bool sample_valid_ = false;
+  // The regime cadence: the last point's time, index and regime (the hysteresis of classify()), and the seconds.
+  double cadence_t_ = 0.0;
+  std::uint64_t cadence_k_ = 0;
+  Regime cadence_regime_ = Regime::nutating;
+  std::array<double, kRegimeCount> regime_seconds_{};
+  StationaryState model_stationary_;  // solved at reset and commands: its existence and unstable root (no spin)
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_

@@ -27,7 +27,7 @@ const char* kUsage =
     "                   [--lcm URL [--lcm-channel NAME]] [--quiet] [--progress]\n"
     "  --duration S    simulated seconds (default: the scene's duration)\n"
     "  --csv FILE      write the state at --rate samples per simulated second\n"
-    "  --rate HZ       sample rate of the CSV and of the summary's regime_seconds (default 100)\n"
+    "  --rate HZ       sample rate of the CSV and of --lcm (default 100)\n"
     "  --summary FILE  write the JSON summary (- for standard output)\n"
     "  --lcm URL       stream top_sim.top_state_t in real time at --rate Hz over LCM (e.g. udpm://239.255.76.67:7667?ttl=0)\n"
     "  --lcm-channel C LCM channel (default TOP_STATE)\n"
@@ -206,9 +206,9 @@ int main(int argc, char** argv) {
   RunOptions opt;
   opt.duration = duration;
   if (args.progress || (!args.quiet && isatty(STDERR_FILENO))) opt.on_progress = progress_printer(sim.time(), duration);
-  opt.sample_rate = args.rate;  // the summary's regime_seconds come from the samples too
   CsvWriter rows(csv);
-  if (csv.is_open()) {
+  if (csv.is_open()) {  // only the CSV (and --lcm) reads samples: the summary's regime_seconds are the simulator's
+    opt.sample_rate = args.rate;
     rows.header();
     opt.on_sample = [&rows](const Snapshot& s) { rows.row(s); };
   }

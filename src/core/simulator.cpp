@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/counters.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
@@ -76,6 +77,17 @@ const char* overflowed_part(const SampleAnalysis& a) {
   return nullptr;
 }
 
+// What a regime cadence point needs of a state: the dynamics, the indicators and the energy, with no stationary
+// solve: the indicators read only the model's answer (exists, slip_unstable), which no spin changes.
+SampleAnalysis cadence_analysis(const Model& model, ContactMode mode, const StateVector& y,
+                                const StationaryState& model_stationary) {
+  SampleAnalysis a;
+  evaluate_dynamics(model, mode, y, a.dynamics);
+  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
+  a.energy = mechanical_energy(model, y);
+  return a;
+}
+
 std::string stalled_message(double t) {
   return describe(ContactFault::numerical, 0.0, t) + " (" + std::to_string(kMaxStalledSteps) +
          " steps too small to change t = " + format_number(t) + " s: the motion is too fast for the time's resolution)";
@@ -125,7 +137,6 @@ void Simulator::reset() {
   fault_ = ContactFault::none;
   fault_message_.clear();
   max_residual_ = 0.0;
-  regime_ = Regime::nutating;
   mode_seconds_.fill(0.0);
   switches_.clear();
   switch_count_ = 0;
@@ -136,7 +147,14 @@ void Simulator::reset() {
   mode_ = initial_mode(model_, y_).mode;
   mode_since_ = t_;
   restart_stepper(true);
-  update_sample();
+  invalidate_sample();
+  model_stationary_ = stationary_state(model_, shell_spin(y_));
+  // The regime cadence restarts here: its first point is the initial state, classified from nutating.
+  cadence_t_ = t_;
+  cadence_k_ = 0;
+  cadence_regime_ = Regime::nutating;
+  regime_seconds_.fill(0.0);
+  if (fault_ == ContactFault::none) cadence_point(t_, y_);
 }
 
 // After any jump of the state, the model or the mode: optionally re-base the energy balance (commands inject
@@ -171,6 +189,7 @@ void Simulator::stop_at_step_start(const std::string& detail) {
   if (all_finite(y0) && std::isfinite(mechanical_energy(model_, y0))) {
     y_ = y0;
     t_ = t0;
+    invalidate_sample();
   }
   fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + detail);
 }
@@ -233,6 +252,8 @@ void Simulator::apply_pending() {
     if (due.empty()) return;
     for (const Command& c : due) apply_now(c);
   }
+  invalidate_sample();
+  model_stationary_ = stationary_state(model_, shell_spin(y_));  // the inclination or the law may have changed
   reclose_contact();
   restart_stepper(true);
 }
@@ -265,8 +286,8 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
           if (stepper_->time() > t_) {
             y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
             t_ = stepper_->time();
+            invalidate_sample();
           }
-          update_sample();
           return false;
         }
         const double t_before = stepper_->time();
@@ -290,9 +311,9 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
     else
       y_ = stepper_->state();
     t_ = t_stop;
+    invalidate_sample();
   }
   if (fault_ == ContactFault::none) apply_pending();  // events due exactly at t_target take effect now
-  update_sample();
   return true;
 }
 
@@ -327,7 +348,8 @@ bool Simulator::scan_events(double t_end) {
   }
   if (model_.kind != ModelKind::full) {
     scanned_ = t_end;
-    return true;
+    run_cadence(t_end);
+    return fault_ == ContactFault::none;
   }
   const ModeMargins m1 = step_end_margins(y1);
   int samples = 1;
@@ -351,8 +373,11 @@ bool Simulator::scan_events(double t_end) {
         stepper_->state_at(mid, ym);
         if (fired(margins_of(model_, mode_, ym), ym) != kNoEvent) hi = mid; else lo = mid;
       }
+      run_cadence(hi);  // the regime's points up to the event, on this step's dense output
+      if (fault_ != ContactFault::none) return false;
       stepper_->state_at(hi, y_);
       t_ = hi;
+      invalidate_sample();
       const ModeMargins mh = margins_of(model_, mode_, y_);
       int event = fired(mh, y_);
       if (event == kNoEvent) event = fired(mk, yk);  // rounding at the boundary: keep the sample's verdict
@@ -365,7 +390,8 @@ bool Simulator::scan_events(double t_end) {
   }
   last_margins_ = m1;
   scanned_ = t_end;
-  return true;
+  run_cadence(t_end);
+  return fault_ == ContactFault::none;
 }
 
 // The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
@@ -451,18 +477,57 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
   return out;
 }
 
-// The one analysis and the one classification of a sample; a stopped top keeps its analysis for the snapshot.
-void Simulator::update_sample() {
-  sample_ = analyse_sample(model_, mode_, y_);
+// The regime cadence points in (cadence_t_, t_end], each on the dense output of the step that holds it.
+void Simulator::run_cadence(double t_end) {
+  while (fault_ == ContactFault::none) {
+    const double tk = t_origin_ + static_cast<double>(cadence_k_ + 1) * kRegimeCadence;
+    if (tk > t_end) return;
+    ++cadence_k_;
+    StateVector yk;
+    if (tk >= stepper_->time()) yk = stepper_->state(); else stepper_->state_at(tk, yk);
+    cadence_point(tk, yk);
+  }
+}
+
+// One cadence point: the overflow guard (a run nobody reads still stops) and the classification that carries the
+// hysteresis; the interval since the last point counts for that point's regime.
+void Simulator::cadence_point(double t, const StateVector& y) {
+  const SampleAnalysis a = cadence_analysis(model_, mode_, y, model_stationary_);
   // A finite state whose energy or dynamics overflow (spins ~1e150 rad/s and up) is no answer either.
-  const char* part = fault_ == ContactFault::none ? overflowed_part(sample_) : nullptr;
-  if (part) fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (" + part + " overflowed)");
-  regime_ = fault_ != ContactFault::none ? Regime::contact_fault
-                                         : classify(model_.regime, sample_.indicators, false, regime_);
+  if (const char* part = overflowed_part(a)) {
+    y_ = y;  // the top stops at the point that overflowed
+    t_ = t;
+    invalidate_sample();
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t) + " (" + part + " overflowed)");
+    return;
+  }
+  regime_seconds_[code(cadence_regime_)] += t - cadence_t_;
+  cadence_t_ = t;
+  cadence_regime_ = classify(model_.regime, a.indicators, false, cadence_regime_);
+  invalidate_sample();  // a read's hysteresis is this point's regime
+}
+
+std::array<double, kRegimeCount> Simulator::regime_seconds() const {
+  std::array<double, kRegimeCount> s = regime_seconds_;
+  s[code(cadence_regime_)] += std::max(0.0, t_ - cadence_t_);  // up to now (a fault stops the time)
+  return s;
+}
+
+// The sample of the current state, analysed on the first read after a change and classified with the hysteresis
+// of the last cadence point (a read commits nothing: the next read or cadence point sees the same history).
+const SampleAnalysis& Simulator::sample() const {
+  if (!sample_valid_) {
+    sample_ = analyse_sample(model_, mode_, y_);
+    sample_regime_ = classify(model_.regime, sample_.indicators, false, cadence_regime_);
+    sample_valid_ = true;
+  }
+  return sample_;
 }
 
 Snapshot Simulator::snapshot() const {
-  Snapshot s = make_snapshot(model_, y_, t_, balance_, sample_, regime_, mode_);
+  const SampleAnalysis& a = sample();
+  const Regime regime = fault_ != ContactFault::none ? Regime::contact_fault : sample_regime_;
+  Snapshot s = make_snapshot(model_, y_, t_, balance_, a, regime, mode_);
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
     s.fault_message = fault_message_;
@@ -471,6 +536,7 @@ Snapshot Simulator::snapshot() const {
 }
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y) {
+  count(work_counters().sample_analyses);
   SampleAnalysis a;
   evaluate_dynamics(model, mode, y, a.dynamics);
   a.stationary = stationary_state(model, shell_spin(y));

@@ -5,6 +5,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "top_sim/counters.hpp"
+
 namespace top_sim {
 
 namespace {
@@ -136,6 +138,7 @@ bool sleeping_geometry(const Model& model, double spin, StationaryState& st) {
 }  // namespace
 
 StationaryState stationary_state(const Model& model, double spin) {
+  count(work_counters().stationary_solves);
   StationaryState st;
   if (!sleeping_geometry(model, spin, st)) return st;
   const double alpha = model.plane.inclination;

@@ -75,6 +75,7 @@ struct RunResult {
   std::vector<ModeSwitch> mode_switches;  // every contact-mode switch of the run, in time order
   std::uint64_t mode_switch_count = 0;    // all of them (the list stops at Simulator::kMaxPendingSwitches)
   std::array<double, kContactModeCount> mode_seconds{};  // simulated seconds in each mode (this run)
+  std::array<double, kRegimeCount> regime_seconds{};     // in each regime, on the simulator's regime cadence
   SampledSummary sampled;  // of the samples at RunOptions.sample_rate (with the initial state); none without
 };
 

@@ -1,0 +1,11 @@
+// Work counters of the core (counters.hpp).
+#include "top_sim/counters.hpp"
+
+namespace top_sim {
+
+WorkCounters& work_counters() {
+  static WorkCounters counters;
+  return counters;
+}
+
+}  // namespace top_sim
