@@ -37,6 +37,19 @@ BENCHMARK_CAPTURE(rhs, full_constrained, NormalForceModel::constrained, ModelKin
 BENCHMARK_CAPTURE(rhs, full_static, NormalForceModel::static_approximation, ModelKind::full);
 BENCHMARK_CAPTURE(rhs, adiabatic, NormalForceModel::constrained, ModelKind::adiabatic);
 
+// The frictionless top (config/scenes/frictionless.yaml, Coulomb mu = 0) at 0.37 s: the lean-step scene of issue 21.
+void rhs_frictionless(benchmark::State& bs) {
+  const Scene scene = load_scene(default_config_dir() + "/scenes/frictionless.yaml");
+  const StateVector y = nutating_state(scene);
+  StateVector dydt{};
+  for (auto _ : bs) {
+    benchmark::DoNotOptimize(y);
+    model_derivative(scene.model, ContactMode::slipping, y, dydt);
+    benchmark::DoNotOptimize(dydt);
+  }
+}
+BENCHMARK(rhs_frictionless);
+
 // One simulated second of the default scene from its tilted start (the transient: the hardest second).
 // Fixed steps: the largest power-of-ten-ish step that stays bounded at 200 rad/s (stability map, docs/performance.md).
 void simulated_second(benchmark::State& bs, Method method, double dt, double t0) {

@@ -75,6 +75,16 @@ void motion(const Model& model, const StateVector& y, Dynamics& out, double& pai
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
 
+// cos(max_tilt), recomputed only when the angle changes: event scans evaluate margins many times per step.
+double cos_max_tilt(const Model& model) {
+  thread_local double angle = 0.0, cosine = 1.0;
+  if (model.top.max_tilt != angle) {
+    angle = model.top.max_tilt;
+    cosine = std::cos(angle);
+  }
+  return cosine;
+}
+
 void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double& painleve) {
   switch (mode) {
     case ContactMode::slipping: motion<ContactMode::slipping>(model, y, out, painleve); break;
@@ -89,7 +99,7 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
   ContactForceRecord record;
   evaluate_motion(model, mode, y, out, record.painleve);
   record.force = out.contact_force;
-  if (margins_from_record(model, mode, y, record, std::cos(model.top.max_tilt), out.margins)) return;
+  if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
   // A slipping contact that may stick: the stick function needs the rolling force at this state.
   const Eigen::Vector3d F = rolling_force(contact_response(model, y));
   const double consistency =

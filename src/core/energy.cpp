@@ -6,11 +6,11 @@
 namespace top_sim {
 
 namespace {
-double kinetic_energy(const Model& model, const StateVector& y) {
+// f_hat is the state's figure axis normalised (the caller's, so that it is normalised once).
+double kinetic_energy(const Model& model, const StateVector& y, const Eigen::Vector3d& f_hat) {
   const Top& top = model.top;
   const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
   const double nu = top.has_rotor ? y[idx::nu] : 0.0;
-  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d w = angular_velocity(y);
   const Eigen::Vector3d v_cm = velocity3(y) + w.cross(top.com_offset * f_hat);
   const double w_f = w.dot(f_hat);
@@ -23,14 +23,16 @@ double kinetic_energy(const Model& model, const StateVector& y) {
 
 double mechanical_energy(const Model& model, const StateVector& y) {
   const Top& top = model.top;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d r_cm =
-      Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius + y[idx::gap]) + top.com_offset * figure_axis(y).normalized();
-  return kinetic_energy(model, y) - top.mass * model.plane.g_plane.dot(r_cm);  // m g z_cm,W = -m g_P . r_cm
+      Eigen::Vector3d(y[idx::x], y[idx::x + 1], top.tip_radius + y[idx::gap]) + top.com_offset * f_hat;
+  return kinetic_energy(model, y, f_hat) - top.mass * model.plane.g_plane.dot(r_cm);  // m g z_cm,W = -m g_P . r_cm
 }
 
 double energy_scale(const Model& model, const StateVector& y) {
   const Top& top = model.top;
-  return kinetic_energy(model, y) + top.mass * model.plane.gravity * (top.tip_radius + std::abs(top.com_offset));
+  return kinetic_energy(model, y, figure_axis(y).normalized()) +
+         top.mass * model.plane.gravity * (top.tip_radius + std::abs(top.com_offset));
 }
 
 void EnergyBalance::rebase(const Model& model, const StateVector& y) {

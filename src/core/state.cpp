@@ -11,9 +11,10 @@ void normalize_figure_axis(StateVector& y) {
 }
 
 bool all_finite(const StateVector& y) {
-  for (double v : y)
-    if (!std::isfinite(v)) return false;
-  return true;
+  // v * 0 is 0 for a finite v and NaN otherwise: one branch-free sum instead of a test per component.
+  double sum = 0.0;
+  for (double v : y) sum += v * 0.0;
+  return sum == 0.0;
 }
 
 }  // namespace top_sim
