@@ -13,10 +13,12 @@
 #include <ctime>
 #include <fstream>
 #include <iostream>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "mujoco_top.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
@@ -356,16 +358,10 @@ struct Options {
 };
 
 int repetitions(const std::string& text) {
-  std::size_t used = 0;
-  int n = 0;
-  try {
-    n = std::stoi(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || n < 1 || n > 1000)
+  const std::optional<double> n = top_sim::parse_number(text);
+  if (!n || !(*n >= 1.0 && *n <= 1000.0) || *n != std::floor(*n))
     throw std::invalid_argument("--reps: '" + text + "' is not allowed; must be an integer in [1, 1000]");
-  return n;
+  return static_cast<int>(*n);
 }
 
 Options parse(int argc, char** argv) {

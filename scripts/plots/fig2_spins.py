@@ -7,11 +7,10 @@ a) the raw contact-point paths: all leave at the same phi*, but the relaxation w
 b) the same paths with lengths scaled by (200/spin)^2: one curve;
 c) the deviation of the direction of travel from phi* against time scaled by 200/spin: one curve.
 """
-import sys
 
 import numpy as np
 
-from plotlib import load, paper_phi_star, plt
+from plotlib import command_line, load, paper_phi_star, plt, save
 
 ALPHA, MU_C, S_C = 0.09, 0.20, 0.7  # config/scenes/fig2_spin*.yaml, config/planes/steel.yaml
 SPINS = (100, 200, 400)
@@ -52,12 +51,8 @@ def main(data_dir, out):
     c.legend(fontsize=7)
     fig.suptitle("Fig. 2 analogue: aluminium top on steel, alpha = 0.09 rad, started tilted 0.1 rad at rest: "
                  "phi* does not depend on the spin; relaxation time ~ spin, relaxation path ~ spin$^2$", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out)
-    print(f"fig2: wrote {out}")
+    save(fig, out, "fig2")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    command_line(main, __doc__)

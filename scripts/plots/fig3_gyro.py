@@ -6,11 +6,10 @@ usage: fig3_gyro.py DATA_DIR OUT.png
 Reads DATA_DIR/fig3_gyro_reversal.csv (top_sim_run, 50 samples per second).
 """
 import math
-import sys
 
 import numpy as np
 
-from plotlib import load, paper_phi_star, plt
+from plotlib import command_line, load, paper_phi_star, plt, save
 
 ALPHA, MU_C, S_C = 0.07, 0.25, 0.6  # config/scenes/gyro_reversal.yaml (PMMA)
 
@@ -61,12 +60,8 @@ def main(data_dir, out):
            transform=c.transAxes, fontsize=7, va="center")
     fig.suptitle("Fig. 3 analogue: gyroscope-loaded aluminium top on PMMA, alpha = 0.07 rad; rotor J = 2e-6 kg m$^2$, "
                  "c = 1.5e-9 N m s, shell -20 rad/s, rotor +2000 rad/s, started asleep", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out)
-    print(f"fig3: wrote {out}")
+    save(fig, out, "fig3")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    command_line(main, __doc__)

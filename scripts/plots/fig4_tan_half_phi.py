@@ -8,11 +8,10 @@ unstable dashed. Points: measured tan(phi/2) at the end of each run (sleeping, o
 """
 import glob
 import os
-import sys
 
 import numpy as np
 
-from plotlib import load, paper_branches, plt
+from plotlib import command_line, load, paper_branches, plt, save
 
 PLANE_COLOURS = {"pmma": "tab:blue", "steel": "tab:orange"}
 TOP_MARKERS = {"aluminium": "o", "steel": "s", "wood": "^"}
@@ -62,12 +61,8 @@ def main(data_dir, out):
     ax.set_ylim(0.0, 1.05)
     ax.set_title("Fig. 4 analogue: sleeping direction against inclination (200 rad/s)")
     ax.legend(fontsize=6.5, loc="lower right", ncol=1, framealpha=0.9)
-    fig.tight_layout()
-    fig.savefig(out)
-    print(f"fig4: wrote {out}")
+    save(fig, out, "fig4")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    command_line(main, __doc__)

@@ -7,11 +7,10 @@ usage: fig5_linearized.py DATA_DIR OUT.png
 Reads DATA_DIR/fig5_linearized_60s.csv and fig5_linearized_600s.csv (from top_sim_run, thinned).
 """
 import math
-import sys
 
 import numpy as np
 
-from plotlib import by_second, load, plt
+from plotlib import by_second, command_line, load, plt, save
 
 ALPHA, MU0, S0, K = 0.1, math.tan(0.1), 0.13576075974024854, 1.0  # config/scenes/fig5_linearized.yaml
 COM_OFFSET = 0.010  # f of config/tops/aluminium.yaml [m]
@@ -68,12 +67,8 @@ def main(data_dir, out):
     fig.suptitle("Fig. 5 analogue: aluminium top on PMMA, alpha = 0.1 rad, 200 rad/s, tilted 0.1 rad at rest; "
                  f"linearized law mu(s) = {MU0:.4f} + {K:g} (s - {S0:.4f})\n"
                  "panels a-c: first 60 s, one colour per simulated second (red, green, red, ...)", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out)
-    print(f"fig5: wrote {out}")
+    save(fig, out, "fig5")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    command_line(main, __doc__)

@@ -5,11 +5,10 @@ usage: fit_stationary.py POINTS.csv CURVE.csv OUT.png [LABEL]
 POINTS.csv: s, y (= tan alpha), sigma_s, sigma_y, mirrored (1: negative spin, phi mapped to pi - phi).
 CURVE.csv: s, mu of the fitted law (before the clamp at 0).
 """
-import sys
 
 import numpy as np
 
-from plotlib import load, plt
+from plotlib import command_line, load, plt, save
 
 
 def main(points, curve, out, label="fit"):
@@ -27,11 +26,8 @@ def main(points, curve, out, label="fit"):
     ax.set_xlim(0.0, 1.0)
     ax.set_ylim(bottom=0.0)
     ax.legend(fontsize=7)
-    fig.tight_layout()
-    fig.savefig(out)
+    save(fig, out)
 
 
 if __name__ == "__main__":
-    if len(sys.argv) not in (4, 5):
-        raise SystemExit(__doc__)
-    main(*sys.argv[1:])
+    command_line(main, __doc__, (3, 4))

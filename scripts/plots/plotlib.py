@@ -1,6 +1,7 @@
 """Shared helpers of the figure scripts: CSV loading, the Agg backend, the paper law's branches."""
 import csv
 import math
+import sys
 
 import matplotlib
 
@@ -64,3 +65,18 @@ def levels_in(values, level):
         k = round((0.5 * (lo + hi) - level) / (2 * math.pi))
         return [level + 2 * math.pi * k]
     return [level + 2 * math.pi * k for k in range(k_lo, k_hi + 1)]
+
+
+def save(fig, out, name=None):
+    """Lays the figure out, writes it to out and says so (as name) when a name is given."""
+    fig.tight_layout()
+    fig.savefig(out)
+    if name:
+        print(f"{name}: wrote {out}")
+
+
+def command_line(main, usage, counts=(2,)):
+    """Calls main with the command line's arguments when their number is one of counts, else exits with usage."""
+    if len(sys.argv) - 1 not in counts:
+        raise SystemExit(usage)
+    main(*sys.argv[1:])

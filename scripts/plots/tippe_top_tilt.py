@@ -8,11 +8,10 @@ Reads DATA_DIR/tippe_top.csv and DATA_DIR/tippe_top_tumbling.csv (top_sim_run --
 spin, s, regime; the tilt is acos(f_z)).
 """
 import math
-import sys
 
 import numpy as np
 
-from plotlib import load, plt
+from plotlib import command_line, load, plt, save
 
 # The two scenes' sphere (config/scenes/tippe_top*.yaml): m, g, R, f, I_d; I_f per scene.
 M, G, R, F, I_D = 0.015, 9.81, 0.025, -0.005, 3.75e-6
@@ -74,12 +73,8 @@ def main(data_dir, out):
     b.legend(fontsize=7, loc="upper right")
     fig.suptitle("Tippe top: Cohen's sphere (R 2.5 cm, f = -0.5 cm, m 15 g, Coulomb 0.3 regularised at 1 cm/s, "
                  "100 rad/s from 0.1 rad) and its prolate variant", fontsize=10)
-    fig.tight_layout()
-    fig.savefig(out)
-    print(f"tippe_top_tilt: wrote {out}")
+    save(fig, out, "tippe_top_tilt")
 
 
 if __name__ == "__main__":
-    if len(sys.argv) != 3:
-        raise SystemExit(__doc__)
-    main(sys.argv[1], sys.argv[2])
+    command_line(main, __doc__)

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cstdint>
 #include <iostream>
+#include <optional>
 #include <sstream>
 #include <string>
 
@@ -31,16 +32,9 @@ struct BadArgument {
 };
 
 double positive(const std::string& flag, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0.0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used != text.size() || !(v > 0.0))
-    throw BadArgument{flag + " = '" + text + "': must be a number > 0"};
-  return v;
+  const std::optional<double> v = top_sim::parse_number(text);
+  if (!v || !(*v > 0.0)) throw BadArgument{flag + " = '" + text + "': must be a number > 0"};
+  return *v;
 }
 
 Arguments parse(int argc, char** argv) {
