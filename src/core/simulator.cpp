@@ -78,7 +78,8 @@ const char* overflowed_part(const SampleAnalysis& a) {
 }
 
 // What a regime cadence point needs of a state: the dynamics, the indicators and the energy, with no stationary
-// solve: the indicators read only the model's answer (exists, slip_unstable), which no spin changes.
+// solve: the indicators read only the model's answer (exists, slip_unstable), which no spin changes. A sample
+// adds the stationary state at its spin.
 SampleAnalysis cadence_analysis(const Model& model, ContactMode mode, const StateVector& y,
                                 const StationaryState& model_stationary) {
   SampleAnalysis a;
@@ -537,11 +538,9 @@ Snapshot Simulator::snapshot() const {
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y) {
   count(work_counters().sample_analyses);
-  SampleAnalysis a;
-  evaluate_dynamics(model, mode, y, a.dynamics);
-  a.stationary = stationary_state(model, shell_spin(y));
-  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, a.stationary);
-  a.energy = mechanical_energy(model, y);
+  const StationaryState stationary = stationary_state(model, shell_spin(y));
+  SampleAnalysis a = cadence_analysis(model, mode, y, stationary);  // and the sleeping state at this spin
+  a.stationary = stationary;
   return a;
 }
 
