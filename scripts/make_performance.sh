@@ -38,9 +38,9 @@ stamp() {
 }
 
 cmake -S "$ROOT" -B "$BUILD" -DCMAKE_BUILD_TYPE=Release -DTOP_SIM_ROS=OFF -DTOP_SIM_TESTS=OFF \
-  -DTOP_SIM_PYTHON=OFF -DCMAKE_CXX_FLAGS=-g > "$BUILD.cmake.log"
+  -DTOP_SIM_PYTHON=OFF > "$BUILD.cmake.log"
 targets=(top_sim_study top_sim_run core_bench work_counts)
-cmake --build "$BUILD" --target help | grep -qw peer_mujoco && targets+=(peer_mujoco)
+cmake --build "$BUILD" --target help | grep -w peer_mujoco > /dev/null && targets+=(peer_mujoco)
 cmake --build "$BUILD" -j"$TOP_SIM_JOBS" --target "${targets[@]}" > "$BUILD.make.log"
 BIN=$BUILD/bin
 
@@ -69,7 +69,7 @@ if command -v valgrind > /dev/null; then
   valgrind --tool=callgrind --callgrind-out-file="$BUILD/callgrind.out" "$BIN/top_sim_run" "$scene" \
     > "$BUILD.callgrind.log" 2>&1 || top_sim_die "callgrind of top_sim_run failed: $BUILD.callgrind.log"
   rm -f "$scene"
-  callgrind_annotate --inclusive=no "$BUILD/callgrind.out" 2> /dev/null | sed -n '1,40p' | cut -c1-160 \
+  callgrind_annotate --inclusive=no "$BUILD/callgrind.out" 2> /dev/null | sed -n '/PROGRAM TOTALS/,+31p' | cut -c1-160 \
     > "$DATA/perf_callgrind.txt"
   { echo "### callgrind: instructions per function, 30 s of the default scene"; echo
     stamp "instruction counts"; echo; echo '```'; cat "$DATA/perf_callgrind.txt"; echo '```'; } > "$GEN/90_callgrind.md"
