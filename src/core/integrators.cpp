@@ -338,9 +338,8 @@ class Rosenbrock4Stepper : public Stepper {
       y = current_;
       return;
     }
-    UVector x(idx::size);
-    interval().calc_state(t, x);
-    std::copy(x.begin(), x.end(), y.begin());
+    interval().calc_state(t, scratch_);
+    std::copy(scratch_.begin(), scratch_.end(), y.begin());
     normalize_figure_axis(y);
   }
 
@@ -356,6 +355,7 @@ class Rosenbrock4Stepper : public Stepper {
   mutable Dense dense_[2];
   int active_ = 0;
   UVector x_;
+  mutable UVector scratch_ = UVector(idx::size);  // dense output's state: a read allocates nothing
   StateVector current_{};
   double next_dt_ = 0.0;
   bool renormalized_ = false;
