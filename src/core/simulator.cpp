@@ -397,9 +397,11 @@ bool Simulator::scan_events(double t_end) {
   return fault_ == ContactFault::none;
 }
 
-// The closed-form flight (flight.hpp) where its dynamics is gravity and no torque, else the numeric stepper.
+// The closed-form flight (flight.hpp) where its dynamics is gravity and no torque, else the numeric stepper; a
+// fixed-step method is chosen to see that method's own error, so its flights are stepped too.
 void Simulator::select_stepper() {
-  const bool closed = mode_ == ContactMode::flight && flight_in_closed_form(model_);
+  const bool closed =
+      mode_ == ContactMode::flight && flight_in_closed_form(model_) && is_adaptive(scene_.integrator.method);
   if (closed == closed_flight_) return;
   std::swap(stepper_, parked_);
   closed_flight_ = closed;
