@@ -40,7 +40,7 @@ void flight_state(const Model& model, const FlightMotion& m, double t, StateVect
 // The gap and its rate alone at time t (what the touchdown search evaluates).
 void flight_gap(const Model& model, const FlightMotion& m, double t, double& gap, double& gap_rate);
 
-// The first time after t0 at which the gap is <= 0 while closing (the simulator's touchdown), bisected on the
+// The first time after t0 at which the gap is <= 0 while closing (the simulator's touchdown), located on the
 // closed form to 1e-15 relative in t; infinity when the search finds none.
 double touchdown_time(const Model& model, const FlightMotion& m);
 

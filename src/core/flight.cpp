@@ -48,12 +48,26 @@ double descent_bound(const Model& model, const FlightMotion& m) {
   return (vz + std::sqrt(vz * vz + 2.0 * g * drop)) / g;
 }
 
-// Bisection of the touchdown predicate in absolute time, so that the state at the answer shows it exactly.
-double bisect_touchdown(const Model& model, const FlightMotion& m, double lo, double hi) {
-  for (int i = 0; i < 200 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (!(mid > lo && mid < hi)) break;
-    if (closing(model, m, mid)) hi = mid; else lo = mid;
+// The first closing instant in (lo, hi] (closing at hi, not at lo) to 1e-15 relative in absolute time, so that
+// the state at the answer shows it exactly: Newton on the gap, kept inside the bracket (else bisection); once its
+// correction is below the tolerance, a probe half a tolerance across the root closes the bracket.
+double refine_touchdown(const Model& model, const FlightMotion& m, double lo, double hi) {
+  double t = hi;
+  for (int i = 0; i < 200; ++i) {
+    const double tol = 1e-15 * std::max(1.0, std::abs(hi));
+    if (!(hi - lo > tol)) break;
+    double gap, gap_rate;
+    flight_gap(model, m, t, gap, gap_rate);
+    double next = gap_rate < 0.0 ? t - gap / gap_rate : 0.5 * (lo + hi);
+    const bool converged = std::abs(next - t) < tol;
+    if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
+    const bool at_root = closing(model, m, next);
+    (at_root ? hi : lo) = next;
+    if (converged) {  // the root is within a tolerance of next: probe its other side
+      const double probe = next + (at_root ? -0.5 : 0.5) * tol;
+      if (probe > lo && probe < hi) (closing(model, m, probe) ? hi : lo) = probe;
+    }
+    t = next;
   }
   return hi;
 }
@@ -133,7 +147,7 @@ double touchdown_time(const Model& model, const FlightMotion& m) {
   double t_lo = m.t0;
   for (double k = 1.0; k <= n; k += 1.0) {
     const double t_k = m.t0 + k * h;
-    if (closing(model, m, t_k)) return bisect_touchdown(model, m, t_lo, t_k);
+    if (closing(model, m, t_k)) return refine_touchdown(model, m, t_lo, t_k);
     t_lo = t_k;
   }
   return std::numeric_limits<double>::infinity();
