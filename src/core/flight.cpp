@@ -72,6 +72,12 @@ double refine_touchdown(const Model& model, const FlightMotion& m, double lo, do
   return hi;
 }
 
+// With |gap''| <= M no touchdown comes before the root of gap + gap_rate s - M s^2 / 2 (0 unless the gap is open).
+double safe_step(double gap, double gap_rate, double M) {
+  if (!(gap > 0.0)) return 0.0;
+  return (gap_rate + std::sqrt(gap_rate * gap_rate + 2.0 * M * gap)) / M;
+}
+
 }  // namespace
 
 bool flight_in_closed_form(const Model& model) {
@@ -143,11 +149,15 @@ double touchdown_time(const Model& model, const FlightMotion& m) {
   double h = horizon / kSamplesPerDescent;
   if (m.rate > 0.0) h = std::min(h, 2.0 * M_PI / m.rate / kSamplesPerPrecession);
   if (!(h > 0.0) || !std::isfinite(h)) return std::numeric_limits<double>::infinity();
-  const double n = std::min(std::ceil(horizon / h) + kSamplesPerDescent, kMaxSamples);
-  double t_lo = m.t0;
-  for (double k = 1.0; k <= n; k += 1.0) {
-    const double t_k = m.t0 + k * h;
-    if (closing(model, m, t_k)) return refine_touchdown(model, m, t_lo, t_k);
+  // |gap''| = |g_z - d f_z''| <= M, f_z'' = -rate^2 (f_z - f_along l_z) and |f_z - f_along l_z| <= rho.
+  const double M = -model.plane.g_plane.z() + std::abs(model.top.com_offset) * m.rho * m.rate * m.rate;
+  const double t_end = m.t0 + horizon + kSamplesPerDescent * h;
+  double t_lo = m.t0, gap, gap_rate;
+  flight_gap(model, m, t_lo, gap, gap_rate);
+  for (double k = 0.0; k < kMaxSamples && t_lo < t_end; k += 1.0) {
+    const double t_k = t_lo + std::max(h, safe_step(gap, gap_rate, M));
+    flight_gap(model, m, t_k, gap, gap_rate);
+    if (gap <= 0.0 && gap_rate < 0.0) return refine_touchdown(model, m, t_lo, t_k);
     t_lo = t_k;
   }
   return std::numeric_limits<double>::infinity();
