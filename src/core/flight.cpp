@@ -48,20 +48,19 @@ double descent_bound(const Model& model, const FlightMotion& m) {
   return (vz + std::sqrt(vz * vz + 2.0 * g * drop)) / g;
 }
 
-// The first closing instant in (lo, hi] (closing at hi, not at lo) to 1e-15 relative in absolute time, so that
-// the state at the answer shows it exactly: Newton on the gap, kept inside the bracket (else bisection); once its
-// correction is below the tolerance, a probe half a tolerance across the root closes the bracket.
-double refine_touchdown(const Model& model, const FlightMotion& m, double lo, double hi) {
+// The first closing instant in (lo, hi] (closing at hi, with gap and rate there; not at lo) to 1e-15 relative in
+// absolute time, so that the state at the answer shows it exactly: Newton on the gap, kept inside the bracket (else
+// bisection); once its correction is below the tolerance, a probe half a tolerance across the root closes it.
+double refine_touchdown(const Model& model, const FlightMotion& m, double lo, double hi, double gap, double gap_rate) {
   double t = hi;
   for (int i = 0; i < 200; ++i) {
     const double tol = 1e-15 * std::max(1.0, std::abs(hi));
     if (!(hi - lo > tol)) break;
-    double gap, gap_rate;
-    flight_gap(model, m, t, gap, gap_rate);
     double next = gap_rate < 0.0 ? t - gap / gap_rate : 0.5 * (lo + hi);
     const bool converged = std::abs(next - t) < tol;
     if (!(next > lo && next < hi)) next = 0.5 * (lo + hi);
-    const bool at_root = closing(model, m, next);
+    flight_gap(model, m, next, gap, gap_rate);
+    const bool at_root = gap <= 0.0 && gap_rate < 0.0;
     (at_root ? hi : lo) = next;
     if (converged) {  // the root is within a tolerance of next: probe its other side
       const double probe = next + (at_root ? -0.5 : 0.5) * tol;
@@ -157,7 +156,7 @@ double touchdown_time(const Model& model, const FlightMotion& m) {
   for (double k = 0.0; k < kMaxSamples && t_lo < t_end; k += 1.0) {
     const double t_k = t_lo + std::max(h, safe_step(gap, gap_rate, M));
     flight_gap(model, m, t_k, gap, gap_rate);
-    if (gap <= 0.0 && gap_rate < 0.0) return refine_touchdown(model, m, t_lo, t_k);
+    if (gap <= 0.0 && gap_rate < 0.0) return refine_touchdown(model, m, t_lo, t_k, gap, gap_rate);
     t_lo = t_k;
   }
   return std::numeric_limits<double>::infinity();
