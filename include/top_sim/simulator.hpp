@@ -17,6 +17,7 @@
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/energy.hpp"
+#include "top_sim/flight.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/snapshot.hpp"
@@ -64,7 +65,7 @@ class Simulator {
   // energy) and caches it; the regime is that state's classification with the hysteresis of the last regime
   // cadence point (never committed by a read).
   Snapshot snapshot() const;
-  const StepperStats& stats() const { return stepper_->stats; }
+  const StepperStats& stats() const { return numeric_stepper().stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }
   // The analytic sleeping state for the current alpha and shell spin (solved on the first read, then cached).
@@ -87,13 +88,16 @@ class Simulator {
   static constexpr double kRegimeCadence = 0.1;
   static constexpr std::size_t kMaxPendingSwitches = 100000;
   // Steps made by rosenbrock4 across the stiff slip-onset layer (included in stats()).
-  std::uint64_t layer_steps() const { return stepper_->layer_steps(); }
+  std::uint64_t layer_steps() const { return numeric_stepper().layer_steps(); }
 
  private:
   void restart_stepper(bool rebase_energy);
   void apply_now(const Command& c);
   void apply_pending();
   bool scan_events(double t_end);
+  bool scan_flight(double t_end, const StateVector& y1);
+  void select_stepper();
+  const Stepper& numeric_stepper() const { return closed_flight_ ? *parked_ : *stepper_; }
   ModeMargins step_end_margins(const StateVector& y);
   int fired(const ModeMargins& m, const StateVector& y) const;
   void handle_event(int event, const ModeMargins& m);
@@ -110,6 +114,9 @@ class Simulator {
   Scene scene_;
   Model model_;
   std::unique_ptr<Stepper> stepper_;
+  // The stepper not in use: the closed-form flight (flight.hpp) while stepping, the numeric one in such a flight.
+  std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);
+  bool closed_flight_ = false;  // stepper_ is the closed-form flight
   StateVector y_{};
   double t_ = 0.0;
   double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it

@@ -165,6 +165,7 @@ void Simulator::restart_stepper(bool rebase_energy) {
   if (rebase_energy) balance_.rebase(model_, y_);
   cos_max_tilt_ = std::cos(model_.top.max_tilt);
   record_valid_ = false;  // the mode or the model may have changed
+  select_stepper();
   stepper_->reset(y_, t_);
   scanned_ = t_;
   last_margins_ = margins_of(model_, mode_, y_);
@@ -347,6 +348,7 @@ bool Simulator::scan_events(double t_end) {
                        ": the step is unstable)");
     return false;
   }
+  if (closed_flight_) return scan_flight(t_end, y1);
   if (model_.kind != ModelKind::full) {
     scanned_ = t_end;
     run_cadence(t_end);
@@ -464,6 +466,29 @@ void Simulator::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy
        << ")";
     fail(ContactFault::numerical, os.str());
   }
+}
+
+// The closed-form flight (flight.hpp) where its dynamics is gravity and no torque, else the numeric stepper; a
+// fixed-step method is chosen to see that method's own error, so its flights are stepped too.
+void Simulator::select_stepper() {
+  const bool closed =
+      mode_ == ContactMode::flight && flight_in_closed_form(model_) && is_adaptive(scene_.integrator.method);
+  if (closed == closed_flight_) return;
+  std::swap(stepper_, parked_);
+  closed_flight_ = closed;
+}
+
+// A closed-form step ends at the touchdown it located (the only event of a flight) or short of it.
+bool Simulator::scan_flight(double t_end, const StateVector& y1) {
+  scanned_ = t_end;
+  run_cadence(t_end);
+  if (fault_ != ContactFault::none) return false;
+  if (!(t_end == stepper_->time() && static_cast<const FlightStepper&>(*stepper_).at_touchdown())) return true;
+  y_ = y1;
+  t_ = t_end;
+  invalidate_sample();
+  handle_event(kLift, margins_of(model_, mode_, y_));
+  return false;
 }
 
 std::array<double, kContactModeCount> Simulator::mode_seconds() const {
