@@ -52,6 +52,9 @@ class Stepper {
   virtual double last_step_size() const = 0;
   // Steps made by rosenbrock4 inside a stiff layer (see StiffLayer below); 0 for plain steppers.
   virtual std::uint64_t layer_steps() const { return 0; }
+  // True when the last call of the system was at state() itself, bit for bit (dopri5's first-same-as-last stage,
+  // no renormalisation since): what that call computed at the state can be reused.
+  virtual bool state_was_last_rhs() const { return false; }
   StepperStats stats;
 };
 

@@ -173,6 +173,9 @@ class Dopri5Stepper : public Stepper {
     restarted_ = true;
   }
   double next_step_size() const { return next_dt_; }
+  // odeint's FSAL dopri5 ends every try, accepted or not, with the system at the new state (and initialize() calls
+  // nothing): after an accepted step that was not renormalised, state() is the last argument.
+  bool state_was_last_rhs() const override { return !restarted_ && !renormalized_; }
 
   void step(double) override {
     CountingSystem sys{&system_, &stats.rhs_evaluations};
@@ -411,6 +414,7 @@ class SwitchingStepper : public Stepper {
   const StateVector& state() const override { return active().state(); }
   void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
   double last_step_size() const override { return active().last_step_size(); }
+  bool state_was_last_rhs() const override { return active().state_was_last_rhs(); }
   bool stiff_active() const { return stiff_active_; }
 
  private:
@@ -508,6 +512,7 @@ class LayeredStepper : public Stepper {
   void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
   double last_step_size() const override { return active().last_step_size(); }
   std::uint64_t layer_steps() const override { return layer_steps_; }
+  bool state_was_last_rhs() const override { return active().state_was_last_rhs(); }
 
  private:
   Stepper& active() { return layer_active_ ? *layer_ : *primary_; }
