@@ -51,6 +51,19 @@ struct CountingSystem {
   }
 };
 
+// Counts right-hand sides and keeps the last one's output buffer: after an accepted dopri5 step, odeint's
+// first-same-as-last derivative at the new state.
+struct FsalSystem {
+  const System* system;
+  std::uint64_t* counter;
+  StateVector** last_dxdt;
+  void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
+    ++*counter;
+    *last_dxdt = &dxdt;
+    (*system)(x, dxdt);
+  }
+};
+
 // ---- fixed-step methods ---------------------------------------------------------------------------------
 
 class FixedStepper : public Stepper {
@@ -253,19 +266,13 @@ class Dopri5Stepper : public Stepper {
   bool state_was_last_rhs() const override { return !restarted_ && !renormalized_; }
 
   void step(double) override {
-    CountingSystem sys{&system_, &stats.rhs_evaluations};
-    dense_.do_step(sys);
+    dense_.do_step(FsalSystem{&system_, &stats.rhs_evaluations, &fsal_});
     restarted_ = false;
-    StateVector y = dense_.current_state();
-    // Renormalise f_hat only when it has drifted: re-initialising costs one right-hand side.
-    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
     next_dt_ = dense_.current_time_step();
-    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);
-    if (renormalized_) {
-      last_ = dense_;  // keeps this step's interpolant, which initialize() discards
-      normalize_figure_axis(y);
-      dense_.initialize(y, dense_.current_time(), next_dt_);
-    }
+    StateVector& y = const_cast<StateVector&>(dense_.current_state());  // odeint's own (non-const) buffer: no setter
+    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
+    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);  // only when f_hat has drifted
+    if (renormalized_) renormalize(y, n2);
     ++stats.steps;
   }
 
@@ -285,11 +292,21 @@ class Dopri5Stepper : public Stepper {
   }
 
  private:
-  const Dense& interval() const { return renormalized_ ? last_ : dense_; }
+  const Dense& interval() const { return dense_; }
+
+  // f_hat back to unit length in place, and the first-same-as-last derivative with it (no re-initialisation): only
+  // f' = omega x f reads |f| (the model reads f_hat normalised) and it is linear in f, so f' / |f| is what the
+  // re-evaluation would give, to rounding; the last step's interpolant at its end (theta = 1) does not read it.
+  void renormalize(StateVector& y, double n2) {
+    normalize_figure_axis(y);
+    const double n = std::sqrt(n2);  // normalize_figure_axis's norm
+    for (std::size_t i = 0; i < 3; ++i) (*fsal_)[idx::f + i] /= n;
+  }
 
   IntegratorSettings settings_;
   System system_;
-  Dense dense_, last_;
+  Dense dense_;
+  StateVector* fsal_ = nullptr;  // odeint's buffer of the current derivative
   double next_dt_ = 0.0;
   bool renormalized_ = false;
   bool restarted_ = true;  // no step since reset()
