@@ -70,7 +70,8 @@ using StiffLayer = std::function<bool(const StateVector& y, bool inside)>;
 // the controller grows the step 5x per accepted step.
 constexpr double kLayerFirstStep = 1.0e-9;
 
-// `system` is called for every right-hand side; the stepper counts the calls. With `in_layer`, steps inside the
+// `system` is called for every right-hand side; the stepper counts the calls. dopri5 renormalises f_hat in place
+// and scales the first-same-as-last f' by 1/|f|: the system must read f only as f_hat, but for f' linear in f. With `in_layer`, steps inside the
 // stiff layer are made by rosenbrock4 (the scene's rtol and atol).
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
                                       DifferenceSteps difference_steps = {}, StiffLayer in_layer = {});
