@@ -52,6 +52,9 @@ class Stepper {
   virtual double last_step_size() const = 0;
   // Steps made by rosenbrock4 inside a stiff layer (see StiffLayer below); 0 for plain steppers.
   virtual std::uint64_t layer_steps() const { return 0; }
+  // True when the last call of the system was at state() itself, bit for bit (dopri5's first-same-as-last stage,
+  // no renormalisation since): what that call computed at the state can be reused.
+  virtual bool state_was_last_rhs() const { return false; }
   StepperStats stats;
 };
 
@@ -67,7 +70,8 @@ using StiffLayer = std::function<bool(const StateVector& y, bool inside)>;
 // the controller grows the step 5x per accepted step.
 constexpr double kLayerFirstStep = 1.0e-9;
 
-// `system` is called for every right-hand side; the stepper counts the calls. With `in_layer`, steps inside the
+// `system` is called for every right-hand side; the stepper counts the calls. dopri5 renormalises f_hat in place
+// and scales the first-same-as-last f' by 1/|f|: the system must read f only as f_hat, but for f' linear in f. With `in_layer`, steps inside the
 // stiff layer are made by rosenbrock4 (the scene's rtol and atol).
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
                                       DifferenceSteps difference_steps = {}, StiffLayer in_layer = {});

@@ -140,10 +140,11 @@ class Simulator {
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_
-  StateVector record_y_{};            // the state of the last right-hand side and its contact force
-  ContactForceRecord record_;
-  bool record_valid_ = false;
+  ContactForceRecord record_;         // the contact force of the last right-hand side (at stepper_'s state if it says so)
   double cos_max_tilt_ = 1.0;
+  // The slip-onset layer of the current model (set at each restart): its half width in |v_t| and whether mu(0) > 0.
+  double layer_width_ = 0.0;
+  bool layer_kink_at_rest_ = false;
   double scanned_ = 0.0;              // the current step's dense output is scanned for events up to here
   bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
   double mode_since_ = 0.0;

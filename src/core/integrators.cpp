@@ -7,6 +7,7 @@
 #include <boost/numeric/ublas/matrix.hpp>
 #include <boost/numeric/ublas/vector.hpp>
 #include <cmath>
+#include <cstring>
 #include <limits>
 #include <stdexcept>
 
@@ -46,6 +47,19 @@ struct CountingSystem {
   std::uint64_t* counter;
   void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
     ++*counter;
+    (*system)(x, dxdt);
+  }
+};
+
+// Counts right-hand sides and keeps the last one's output buffer: after an accepted dopri5 step, odeint's
+// first-same-as-last derivative at the new state.
+struct FsalSystem {
+  const System* system;
+  std::uint64_t* counter;
+  StateVector** last_dxdt;
+  void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
+    ++*counter;
+    *last_dxdt = &dxdt;
     (*system)(x, dxdt);
   }
 };
@@ -118,6 +132,80 @@ class FixedStepper : public Stepper {
 
 // ---- Dormand-Prince 5(4) with dense output ----------------------------------------------------------------
 
+// odeint's array_algebra for the state, with its linear combinations (scale_sumN, all dopri5 uses) made on two
+// components per SSE2 operation: the same IEEE operations on each component (the same bits) in about half the
+// instructions (odeint's loop stays scalar: it cannot rule out aliasing). Other operations run component-wise.
+struct PairAlgebra {
+  using Pair = double __attribute__((vector_size(16)));
+  static constexpr std::size_t kN = idx::size;
+
+  template <class A>
+  static Pair load(const A& a, std::size_t i) {
+    Pair p;
+    std::memcpy(&p, &a[i], sizeof p);
+    return p;
+  }
+  // out = op(in...): each pair of inputs is read before its output is written (odeint may pass out as an input).
+  template <class Op, class Out, class... In>
+  static void pairs(Op& op, Out& out, const In&... in) {
+    std::size_t i = 0;
+    for (; i + 2 <= kN; i += 2) {
+      Pair r;
+      op(r, load(in, i)...);
+      std::memcpy(&out[i], &r, sizeof r);
+    }
+    for (; i < kN; ++i) op(out[i], in[i]...);
+  }
+  template <class Op, class... S>
+  static void elements(Op& op, S&... s) {
+    for (std::size_t i = 0; i < kN; ++i) op(s[i]...);
+  }
+
+  template <class S1, class S2, class Op>
+  static void for_each2(S1& s1, S2& s2, Op op) { elements(op, s1, s2); }
+  template <class S1, class S2, class S3, class Op>
+  static void for_each3(S1& s1, S2& s2, S3& s3, Op op) { elements(op, s1, s2, s3); }
+  template <class S1, class S2, class S3, class... F>
+  static void for_each3(S1& s1, S2& s2, S3& s3, odeint::default_operations::scale_sum2<F...> op) {
+    pairs(op, s1, s2, s3);
+  }
+  template <class S1, class S2, class S3, class S4, class Op>
+  static void for_each4(S1& s1, S2& s2, S3& s3, S4& s4, Op op) { elements(op, s1, s2, s3, s4); }
+  template <class S1, class S2, class S3, class S4, class... F>
+  static void for_each4(S1& s1, S2& s2, S3& s3, S4& s4, odeint::default_operations::scale_sum3<F...> op) {
+    pairs(op, s1, s2, s3, s4);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class Op>
+  static void for_each5(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, Op op) { elements(op, s1, s2, s3, s4, s5); }
+  template <class S1, class S2, class S3, class S4, class S5, class... F>
+  static void for_each5(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, odeint::default_operations::scale_sum4<F...> op) {
+    pairs(op, s1, s2, s3, s4, s5);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class Op>
+  static void for_each6(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, Op op) { elements(op, s1, s2, s3, s4, s5, s6); }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class... F>
+  static void for_each6(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6,
+                        odeint::default_operations::scale_sum5<F...> op) {
+    pairs(op, s1, s2, s3, s4, s5, s6);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class S7, class Op>
+  static void for_each7(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, S7& s7,
+                        Op op) { elements(op, s1, s2, s3, s4, s5, s6, s7); }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class S7, class... F>
+  static void for_each7(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, S7& s7,
+                        odeint::default_operations::scale_sum6<F...> op) {
+    pairs(op, s1, s2, s3, s4, s5, s6, s7);
+  }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class S7, class S8, class Op>
+  static void for_each8(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, S7& s7, S8& s8,
+                        Op op) { elements(op, s1, s2, s3, s4, s5, s6, s7, s8); }
+  template <class S1, class S2, class S3, class S4, class S5, class S6, class S7, class S8, class... F>
+  static void for_each8(S1& s1, S2& s2, S3& s3, S4& s4, S5& s5, S6& s6, S7& s7, S8& s8,
+                        odeint::default_operations::scale_sum7<F...> op) {
+    pairs(op, s1, s2, s3, s4, s5, s6, s7, s8);
+  }
+};
+
 // odeint's default error norm over every component but the spin phase (physics.md section 2).
 class PhaseFreeErrorChecker {
  public:
@@ -137,57 +225,80 @@ class PhaseFreeErrorChecker {
   double atol_, rtol_;
 };
 
-// odeint's step adjuster, counting rejections: the controller shrinks a step only when it rejects it.
-class CountingAdjuster : public odeint::default_step_adjuster<double, double> {
-  using Base = odeint::default_step_adjuster<double, double>;
+// The PI step-size control of Hairer's DOPRI5 (Hairer, Norsett & Wanner, Solving ODEs I, section II.4, and its
+// code): the new step reads this step's error and the last accepted one's, which damps the accept/reject cycling of
+// a stability-limited step; after a rejection the next accepted step does not grow. It counts rejections.
+struct PiMemory {
+  double error = 1e-4;    // the last accepted step's error (Hairer's facold)
+  bool rejected = false;  // the last try was rejected
+  std::uint64_t* rejections = nullptr;
+};
+
+class PiAdjuster : public odeint::default_step_adjuster<double, double> {
+  // Hairer's beta (0.04 in DOPRI5, up to 0.08 advised): 0.08 errs less on the default scene than odeint's control and
+  // 0.04 (docs/performance.md, "Lean step, continued"); 0 would be plain I control.
+  static constexpr double kBeta = 0.08;
+  static constexpr double kExponent = 0.2 - 0.75 * kBeta;  // 1/5 less the part the last error takes
+  static constexpr double kSafety = 0.9;
+  static constexpr double kMinFactor = 0.2, kMaxFactor = 10.0;  // bounds of h_new / h
 
  public:
-  explicit CountingAdjuster(double max_dt = 0.0, std::uint64_t* rejected = nullptr)
-      : Base(max_dt), rejected_(rejected) {}
-  double decrease_step(double dt, double error, int error_order) const {
-    if (rejected_) ++*rejected_;
-    return Base::decrease_step(dt, error, error_order);
+  explicit PiAdjuster(double max_dt = 0.0, PiMemory* memory = nullptr)
+      : odeint::default_step_adjuster<double, double>(max_dt), memory_(memory) {}
+  double decrease_step(double dt, double error, int /*error_order*/) const {
+    ++*memory_->rejections;
+    memory_->rejected = true;
+    return limited(dt * std::max(kMinFactor, kSafety / std::pow(error, kExponent)));
+  }
+  double increase_step(double dt, double error, int /*stepper_order*/) const {
+    const double factor = kSafety * std::pow(memory_->error, kBeta) / std::pow(error, kExponent);
+    double h = dt * std::clamp(factor, kMinFactor, kMaxFactor);
+    if (memory_->rejected) h = std::min(h, dt);
+    memory_->error = std::max(error, 1e-4);
+    memory_->rejected = false;
+    return limited(h);
   }
 
  private:
-  std::uint64_t* rejected_;
+  double limited(double dt) const { return m_max_dt > 0.0 ? std::min(dt, m_max_dt) : dt; }
+  PiMemory* memory_;
 };
 
 class Dopri5Stepper : public Stepper {
-  using Base = odeint::runge_kutta_dopri5<StateVector>;
-  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, CountingAdjuster>;
+  using Base = odeint::runge_kutta_dopri5<StateVector, double, StateVector, double, PairAlgebra>;
+  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, PiAdjuster>;
   using Dense = odeint::dense_output_runge_kutta<Controlled>;
 
  public:
   Dopri5Stepper(const IntegratorSettings& s, System system)
       : settings_(s),
         system_(std::move(system)),
-        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), CountingAdjuster(s.max_dt, &stats.rejected))) {}
+        memory_{1e-4, false, &stats.rejected},
+        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), PiAdjuster(s.max_dt, &memory_))) {}
   Dopri5Stepper(const Dopri5Stepper&) = delete;  // the controller points at this object's stats
   Dopri5Stepper& operator=(const Dopri5Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
     dense_.initialize(y, t, dt);
+    memory_.error = 1e-4;  // a new start: no error history
+    memory_.rejected = false;
     renormalized_ = false;
     restarted_ = true;
   }
   double next_step_size() const { return next_dt_; }
+  // odeint's FSAL dopri5 ends every try, accepted or not, with the system at the new state (and initialize() calls
+  // nothing): after an accepted step that was not renormalised, state() is the last argument.
+  bool state_was_last_rhs() const override { return !restarted_ && !renormalized_; }
 
   void step(double) override {
-    CountingSystem sys{&system_, &stats.rhs_evaluations};
-    dense_.do_step(sys);
+    dense_.do_step(FsalSystem{&system_, &stats.rhs_evaluations, &fsal_});
     restarted_ = false;
-    StateVector y = dense_.current_state();
-    // Renormalise f_hat only when it has drifted: re-initialising costs one right-hand side.
-    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
     next_dt_ = dense_.current_time_step();
-    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);
-    if (renormalized_) {
-      last_ = dense_;  // keeps this step's interpolant, which initialize() discards
-      normalize_figure_axis(y);
-      dense_.initialize(y, dense_.current_time(), next_dt_);
-    }
+    StateVector& y = const_cast<StateVector&>(dense_.current_state());  // odeint's own (non-const) buffer: no setter
+    const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
+    renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);  // only when f_hat has drifted
+    if (renormalized_) renormalize(y, n2);
     ++stats.steps;
   }
 
@@ -207,11 +318,22 @@ class Dopri5Stepper : public Stepper {
   }
 
  private:
-  const Dense& interval() const { return renormalized_ ? last_ : dense_; }
+  const Dense& interval() const { return dense_; }
+
+  // f_hat back to unit length in place, and the first-same-as-last derivative with it (no re-initialisation): only
+  // f' = omega x f reads |f| (the model reads f_hat normalised) and it is linear in f, so f' / |f| is what the
+  // re-evaluation would give, to rounding; the last step's interpolant at its end (theta = 1) does not read it.
+  void renormalize(StateVector& y, double n2) {
+    normalize_figure_axis(y);
+    const double n = std::sqrt(n2);  // normalize_figure_axis's norm
+    for (std::size_t i = 0; i < 3; ++i) (*fsal_)[idx::f + i] /= n;
+  }
 
   IntegratorSettings settings_;
   System system_;
-  Dense dense_, last_;
+  PiMemory memory_;  // before dense_: its controller points here
+  Dense dense_;
+  StateVector* fsal_ = nullptr;  // odeint's buffer of the current derivative
   double next_dt_ = 0.0;
   bool renormalized_ = false;
   bool restarted_ = true;  // no step since reset()
@@ -411,6 +533,7 @@ class SwitchingStepper : public Stepper {
   const StateVector& state() const override { return active().state(); }
   void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
   double last_step_size() const override { return active().last_step_size(); }
+  bool state_was_last_rhs() const override { return active().state_was_last_rhs(); }
   bool stiff_active() const { return stiff_active_; }
 
  private:
@@ -508,6 +631,7 @@ class LayeredStepper : public Stepper {
   void state_at(double t, StateVector& y) const override { active().state_at(t, y); }
   double last_step_size() const override { return active().last_step_size(); }
   std::uint64_t layer_steps() const override { return layer_steps_; }
+  bool state_was_last_rhs() const override { return active().state_was_last_rhs(); }
 
  private:
   Stepper& active() { return layer_active_ ? *layer_ : *primary_; }

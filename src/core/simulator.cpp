@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
@@ -36,6 +37,14 @@ constexpr double kTiltGuard = 0.05;       // n . f_hat - cos(theta_max)
 // The stiff slip-onset layer (mu(0) > 0, |v_t| small, slipping) is crossed by rosenbrock4 below this many
 // stick speeds and handed back above twice that (explicit steps are stable there at the usual step sizes).
 constexpr double kLayerWidth = 100.0;
+
+// |v_t| as contact_kinematics computes it (the same operations: the same bits), without the slip and direction.
+double contact_speed(const Model& model, const StateVector& y) {
+  const Eigen::Vector3d u = in_plane_velocity(y), omega = angular_velocity(y);
+  const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
+  const Eigen::Vector3d v_t = u - model.top.tip_radius * omega_x_n;
+  return v_t.norm();
+}
 
 double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
 
@@ -107,11 +116,7 @@ std::string impact_painleve_message(double t, double denominator) {
 Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
   stepper_ = make_stepper(
       scene_.integrator,
-      [this](const StateVector& y, StateVector& dydt) {
-        model_derivative(model_, mode_, y, dydt, &record_);
-        record_y_ = y;
-        record_valid_ = true;
-      },
+      [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt, &record_); },
       [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
       [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); });
   reset();
@@ -119,11 +124,11 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
 
 bool Simulator::in_stiff_layer(const StateVector& y, bool inside) const {
   if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
-  const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
-  const double width = kLayerWidth * std::max(model_.contact.stick_speed, model_.regularization_speed);
-  if (!(k.v_t.norm() < (inside ? 2.0 : 1.0) * width)) return false;
+  if (!(contact_speed(model_, y) < (inside ? 2.0 : 1.0) * layer_width_)) return false;
   // A kink at v_t = 0 needs friction there: mu(0) > 0, or a slip near 1 (no rolling: a point tip, no spin).
-  return raw_friction_coefficient(model_.friction, 0.0) > 0.0 || friction_coefficient(model_.friction, k.slip) > 0.0;
+  if (layer_kink_at_rest_) return true;
+  const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
+  return friction_coefficient(model_.friction, k.slip) > 0.0;
 }
 
 void Simulator::reset() {
@@ -164,9 +169,10 @@ void Simulator::restart_stepper(bool rebase_energy) {
   if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y_);
   if (rebase_energy) balance_.rebase(model_, y_);
   cos_max_tilt_ = std::cos(model_.top.max_tilt);
-  record_valid_ = false;  // the mode or the model may have changed
+  layer_width_ = kLayerWidth * std::max(model_.contact.stick_speed, model_.regularization_speed);
+  layer_kink_at_rest_ = raw_friction_coefficient(model_.friction, 0.0) > 0.0;
   select_stepper();
-  stepper_->reset(y_, t_);
+  stepper_->reset(y_, t_);  // before it, the stepper's state is no argument of a right-hand side of this model
   scanned_ = t_;
   last_margins_ = margins_of(model_, mode_, y_);
   lift_armed_ = last_margins_.lift > 0.0;
@@ -398,10 +404,12 @@ bool Simulator::scan_events(double t_end) {
 }
 
 // The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
-// its recorded contact force serves unless the state differs in any bit (then one full evaluation).
+// its recorded contact force serves when y is the stepper's state in every bit (else one full evaluation).
 ModeMargins Simulator::step_end_margins(const StateVector& y) {
   ModeMargins m;
-  if (record_valid_ && record_y_ == y && margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m)) return m;
+  if (stepper_->state_was_last_rhs() && std::memcmp(y.data(), stepper_->state().data(), sizeof(StateVector)) == 0 &&
+      margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m))
+    return m;
   return margins_of(model_, mode_, y);
 }
 

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <boost/numeric/odeint.hpp>
 #include <cmath>
+#include <cstring>
 #include <functional>
 #include <limits>
 #include <memory>
@@ -572,4 +574,111 @@ TEST(IntegratorEvents, SimulatorLocatesTheBallTouchdownWithEachMethodsKnownBias)
     EXPECT_NEAR(sw[0].t, c.expected, c.tolerance);
     note(std::string(c.integrator) + ": touchdown - t_drop [s]", sw[0].t - t_drop);
   }
+}
+
+// ---- dopri5 against odeint's own algebra, and the first-same-as-last state ----------------------------------------
+
+namespace {
+
+// rates() with f_hat held at e_z and psi at 0: the stepper never renormalises, and psi (left out of the stepper's
+// error norm) has a zero error estimate, so odeint's default error checker sees the same maximum.
+void rates_fixed_axis(const StateVector& y, StateVector& d) {
+  rates(y, d);
+  d[idx::f] = d[idx::f + 1] = d[idx::f + 2] = 0.0;
+  d[idx::psi] = 0.0;
+}
+
+}  // namespace
+
+// The stepper's dopri5 makes its linear combinations two components at a time: the same IEEE operations on each
+// component as odeint's array algebra, so every step and interpolated state equals odeint's bit for bit. Steps of
+// max_dt under tolerances no error reaches: both step-size controllers (the stepper's PI, odeint's) keep h = max_dt.
+TEST(IntegratorDopri5, StepsEqualOdeintsArrayAlgebraBitForBit) {
+  namespace odeint = boost::numeric::odeint;
+  IntegratorSettings s = adaptive_settings(Method::dopri5, 1e12);
+  s.dt = s.max_dt = 1.0 / 64;
+  StateVector y0 = exact(0.0);
+  y0[idx::f] = y0[idx::f + 1] = 0.0;
+  y0[idx::f + 2] = 1.0;
+  y0[idx::psi] = 0.0;
+  std::unique_ptr<Stepper> st = make_stepper(s, rates_fixed_axis);
+  st->reset(y0, 0.0);
+  auto ref = odeint::make_dense_output(s.atol, s.rtol, s.max_dt, odeint::runge_kutta_dopri5<StateVector>());
+  ref.initialize(y0, 0.0, s.dt);
+  const auto sys = [](const StateVector& y, StateVector& d, double) { rates_fixed_axis(y, d); };
+  for (int k = 0; k < 200; ++k) {
+    st->step(1e9);
+    ref.do_step(sys);
+    ASSERT_EQ(st->time(), ref.current_time()) << "step " << k;
+    ASSERT_EQ(0, std::memcmp(st->state().data(), ref.current_state().data(), sizeof(StateVector))) << "step " << k;
+    StateVector a, b;
+    const double mid = 0.5 * (st->previous_time() + st->time());
+    st->state_at(mid, a);
+    ref.calc_state(mid, b);
+    ASSERT_EQ(0, std::memcmp(a.data(), b.data(), sizeof(StateVector))) << "step " << k;
+  }
+  EXPECT_GT(st->time(), 1.0);
+}
+
+// Whenever a stepper says its state was the last right-hand side's argument, it was, in every bit (the simulator
+// then reuses that evaluation's contact force); dopri5 says so after most steps, never right after a reset or a
+// renormalisation of f_hat (rates() turns f_hat, so it drifts), and fixed-step methods never do.
+TEST(IntegratorDopri5, StateWasLastRhsOnlyWhenItWas) {
+  for (Method m : {Method::dopri5, Method::switching, Method::rk4}) {
+    SCOPED_TRACE(to_string(m));
+    StateVector last{};
+    const System recording = [&last](const StateVector& y, StateVector& d) {
+      last = y;
+      rates(y, d);
+    };
+    IntegratorSettings s = is_adaptive(m) ? adaptive_settings(m, 1e-9) : fixed_settings(m, 1e-2);
+    std::unique_ptr<Stepper> st = make_stepper(s, recording);
+    st->reset(exact(0.0), 0.0);
+    EXPECT_FALSE(st->state_was_last_rhs());
+    int said = 0, steps = 0;
+    for (; st->time() < 20.0; ++steps) {
+      st->step(1e9);
+      if (!st->state_was_last_rhs()) continue;
+      ++said;
+      ASSERT_EQ(0, std::memcmp(last.data(), st->state().data(), sizeof(StateVector))) << "t = " << st->time();
+    }
+    if (m == Method::rk4) {
+      EXPECT_EQ(said, 0);
+    } else {
+      EXPECT_GT(said, steps / 2);
+    }
+    note(std::string(to_string(m)) + ": steps whose state was the last RHS argument", said);
+    note(std::string(to_string(m)) + ": steps", steps);
+  }
+}
+
+// Renormalising f_hat (rates() turns it, so its length drifts) keeps dopri5's first-same-as-last derivative: every
+// right-hand side is a stage of a tried step (6 each, 1 to start), none re-initialises, and after 20 s the state is
+// within 100 times the tolerance of the exact solution (measured 1.5e-9).
+TEST(IntegratorDopri5, RenormalisingKeepsTheLastDerivative) {
+  std::unique_ptr<Stepper> st = started(adaptive_settings(Method::dopri5, 1e-9));
+  int renormalised = 0;
+  while (st->time() < 20.0) {
+    st->step(20.0);
+    if (!st->state_was_last_rhs()) ++renormalised;
+  }
+  EXPECT_GT(renormalised, 0);
+  EXPECT_EQ(st->stats.rhs_evaluations, 1 + 6 * (st->stats.steps + st->stats.rejected));
+  EXPECT_LT(max_error(st->state(), exact(st->time())), 1e-7);
+  note("dopri5, 20 s: renormalised steps", renormalised);
+  note("dopri5, 20 s: error", max_error(st->state(), exact(st->time())));
+}
+
+// The PI controller lets no step grow right after a rejection (Hairer's DOPRI5): a first step of 1 s is rejected
+// here (see AdaptiveMethodsCountTheStepsTheyReject), so the second step is at most the first accepted one.
+TEST(IntegratorDopri5, NoGrowthRightAfterARejection) {
+  IntegratorSettings s = adaptive_settings(Method::dopri5, 1e-10);
+  s.dt = 1.0;
+  std::unique_ptr<Stepper> st = started(s);
+  st->step(10.0);
+  ASSERT_GE(st->stats.rejected, 1u);
+  const double h1 = st->last_step_size();
+  st->step(10.0);  // tried at the proposal (<= h1) or, if rejected, smaller still
+  EXPECT_LE(st->last_step_size(), h1);
+  note("dopri5: first accepted step after rejections [s]", h1);
 }
