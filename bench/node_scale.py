@@ -5,7 +5,8 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
   - the rate at which top_states (the array of every top) and /tf arrive at a subscriber (raw bytes, not
     deserialized, so the Python subscriber is not the bottleneck),
   - the node's CPU (utime + stime from /proc) as a share of one core, per top per wall second and per top per tick
-    (the share over tops x the asked rate: issue 21's figure of merit),
+    (the share over tops x the asked rate: issue 21's figure of merit; and over tops x the top_states received, the
+    cost of a tick the node did make when it misses ticks),
   - the latency of a command to the LAST spawned top (its NAME/inclination until its NAME/top_state shows it),
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
 
@@ -167,6 +168,7 @@ def measure(args, env, tops, rate, tf, index):
         t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
         cpu = (c1 - c0) / nh.CLK_TCK / (t1 - t0)
         lat = latency.samples
+        states_hz = states.rate(t0, t1)
         d = diag.values
         return {
             'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': args.node or 'package', 'run': index,
@@ -174,6 +176,7 @@ def measure(args, env, tops, rate, tf, index):
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
             'cpu_us_per_top_per_tick': round(1e6 * cpu / (tops * rate), 2),
+            'cpu_us_per_top_per_tick_received': round(1e6 * cpu / (tops * states_hz), 2) if states_hz > 0 else None,
             'latency_samples': len(lat),
             'latency_p50_ms': round(1e3 * statistics.median(lat), 2) if lat else None,
             'latency_max_ms': round(1e3 * max(lat), 2) if lat else None,
@@ -261,13 +264,13 @@ def medians(results):
 def markdown(results):
     """The table of docs/node_benchmark.md (medians over the runs; tops behind: the runs' range)."""
     rows = ['| tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
-            '[us per s] | CPU per top per tick [us] | command latency p50 / max [ms] | tops behind | start-up [s] | load '
+            '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | load '
             '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|']
     for r in results:
         ms = ['-' if r[k] is None else '%.1f' % r[k] for k in ('latency_p50_ms', 'latency_max_ms')]
-        rows.append('| %d | %g | %s | %.1f | %.3f | %.0f | %.2f | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
+        rows.append('| %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
             r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
-            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], ms[0], ms[1], r['tops_behind_range'], r['startup_s'], r['load_before'], r['load_after'], r['runs']))
+            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], r['load_before'], r['load_after'], r['runs']))
     return '\n'.join(rows)
 
 

@@ -3,8 +3,9 @@
 namespace top_sim_ros {
 
 void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolution, std::size_t length) {
-  if (!points_.empty() && resolution > 0.0 && (p - points_.back().position).norm() < resolution) return;
+  if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
   points_.push_back({stamp, p});
+  newest_ = p;
   if (points_.size() > length) thin();
 }
 

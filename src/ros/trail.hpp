@@ -33,6 +33,9 @@ class Trail {
  private:
   void thin();
   std::vector<Point> points_;
+  // The newest point's position, next to the top's other per-tick data: the check of a top that has not moved
+  // does not touch the points (thousands of trails do not stay in the cache). Trimming and thinning keep it.
+  Eigen::Vector3d newest_ = Eigen::Vector3d::Zero();
 };
 
 }  // namespace top_sim_ros
