@@ -11,12 +11,13 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
 
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
-                      [--node BIN] [--json FILE]
+                      [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf]. Figures are noisy on a shared 2-core machine: the load average is recorded,
 and --repeat N runs the configurations N times in turn (round-robin, so load drifts hit all alike) and the table
-gives each one's medians. --node runs another build's top_sim_node (with the libraries next to it, e.g. a copy of
-an earlier devel/lib) instead of the one on the package path: before and after measured under the same load.
+gives each one's medians. --node LABEL=BIN runs another build's top_sim_node (with the libraries next to it, e.g. a
+copy of an earlier devel/lib); given more than once (LABEL= alone: the package's node), the builds take turns within
+each round, so before and after are measured under the same load.
 """
 import argparse
 import json
@@ -140,13 +141,13 @@ def wait_for_all_tops(rospy, tops, timeout):
         time.sleep(0.5)
 
 
-def measure(args, env, tops, rate, tf, index):
+def measure(args, env, tops, rate, tf, index, node=('package', '')):
     import rospy
     import top_sim.msg as top_sim_msg
-    log_path = os.path.join(args.log_dir, 'scale_%d_%g_%s.log' % (tops, rate, 'tf' if tf else 'notf'))
+    log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0], tops, rate, 'tf' if tf else 'notf'))
     set_parameters(env, tops, rate, tf)
     t_start = time.perf_counter()
-    proc, pid = start_node(env, log_path, timeout=600, node=args.node)
+    proc, pid = start_node(env, log_path, timeout=600, node=node[1])
     subs = []
     try:
         wait_for_all_tops(rospy, tops, timeout=600)
@@ -171,7 +172,7 @@ def measure(args, env, tops, rate, tf, index):
         states_hz = states.rate(t0, t1)
         d = diag.values
         return {
-            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': args.node or 'package', 'run': index,
+            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0], 'run': index,
             'startup_s': round(startup, 2),
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
@@ -196,7 +197,8 @@ def parse_args():
     p.add_argument('--seconds', type=float, default=20.0)
     p.add_argument('--warmup', type=float, default=5.0)
     p.add_argument('--repeat', type=int, default=1)
-    p.add_argument('--node', default='', help="a top_sim_node binary to run instead of the package's")
+    p.add_argument('--node', action='append', default=[],
+                   help="LABEL=BIN: a top_sim_node build to run (BIN empty: the package's); repeatable")
     p.add_argument('--json', default='')
     p.add_argument('--log-dir', default='/tmp/top_sim_scale')
     return p.parse_args()
@@ -211,13 +213,15 @@ def main():
     try:
         import rospy
         rospy.init_node('top_sim_scale_bench', anonymous=True, disable_signals=True)
+        nodes = [tuple(n.split('=', 1)) if '=' in n else (n, n) for n in args.node] or [('package', '')]
         for run in range(args.repeat):
             for c in args.configs.split(','):
                 parts = c.split(':')
                 tops, rate, tf = int(parts[0]), float(parts[1]), not (len(parts) > 2 and parts[2] == 'notf')
-                r = measure(args, env, tops, rate, tf, run)
-                print(json.dumps(r), flush=True)
-                results.append(r)
+                for node in nodes:
+                    r = measure(args, env, tops, rate, tf, run, node)
+                    print(json.dumps(r), flush=True)
+                    results.append(r)
     finally:
         nh.stop_group(master)
     table = medians(results)
@@ -246,10 +250,10 @@ def medians(results):
     """Per configuration (in the order first run), the median of each figure over its runs; behind as min-max."""
     groups = {}
     for r in results:
-        groups.setdefault((r['tops'], r['rate_hz'], r['tf']), []).append(r)
+        groups.setdefault((r.get('node', 'package'), r['tops'], r['rate_hz'], r['tf']), []).append(r)
     table = []
-    for (tops, rate, tf), runs in groups.items():
-        m = {'tops': tops, 'rate_hz': rate, 'tf': tf, 'runs': len(runs)}
+    for (node, tops, rate, tf), runs in groups.items():
+        m = {'node': node, 'tops': tops, 'rate_hz': rate, 'tf': tf, 'runs': len(runs)}
         for key, value in runs[0].items():
             if key in m or key in ('node', 'run') or isinstance(value, bool):
                 continue
@@ -263,13 +267,13 @@ def medians(results):
 
 def markdown(results):
     """The table of docs/node_benchmark.md (medians over the runs; tops behind: the runs' range)."""
-    rows = ['| tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
+    rows = ['| node | tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
             '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | load '
-            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|']
+            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|---|']
     for r in results:
         ms = ['-' if r[k] is None else '%.1f' % r[k] for k in ('latency_p50_ms', 'latency_max_ms')]
-        rows.append('| %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
-            r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
+        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
+            r['node'], r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
             r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], r['load_before'], r['load_after'], r['runs']))
     return '\n'.join(rows)
 
