@@ -144,7 +144,7 @@ def wait_for_all_tops(rospy, tops, timeout):
 def measure(args, env, tops, rate, tf, index, node=('package', '')):
     import rospy
     import top_sim.msg as top_sim_msg
-    log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0], tops, rate, 'tf' if tf else 'notf'))
+    log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
     set_parameters(env, tops, rate, tf)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600, node=node[1])
