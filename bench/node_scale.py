@@ -4,13 +4,20 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
 
   - the rate at which top_states (the array of every top) and /tf arrive at a subscriber (raw bytes, not
     deserialized, so the Python subscriber is not the bottleneck),
-  - the node's CPU (utime + stime from /proc) as a share of one core, and per top per wall second,
+  - the node's CPU (utime + stime from /proc) as a share of one core, per top per wall second and per top per tick
+    (the share over tops x the asked rate: issue 21's figure of merit; and over tops x the top_states received, the
+    cost of a tick the node did make when it misses ticks),
   - the latency of a command to the LAST spawned top (its NAME/inclination until its NAME/top_state shows it),
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
 
-  bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--json FILE]
+  bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
+                      [--node LABEL=BIN ...] [--json FILE]
 
-A configuration is TOPS:RATE[:notf]. Figures are noisy on a shared 2-core machine: the load average is recorded.
+A configuration is TOPS:RATE[:notf]. Figures are noisy on a shared 2-core machine: the load average is recorded,
+and --repeat N runs the configurations N times in turn (round-robin, so load drifts hit all alike) and the table
+gives each one's medians. --node LABEL=BIN runs another build's top_sim_node (with the libraries next to it, e.g. a
+copy of an earlier devel/lib); given more than once (LABEL= alone: the package's node), the builds take turns within
+each round, so before and after are measured under the same load.
 """
 import argparse
 import json
@@ -93,9 +100,18 @@ def set_parameters(env, tops, rate, tf):
         'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)}})
 
 
-def start_node(env, log_path, timeout):
-    node_bin = subprocess.run(['bash', '-c', 'echo $(catkin_find top_sim top_sim_node | head -1)'], env=env,
-                              capture_output=True, universal_newlines=True).stdout.strip()
+def node_command(env, node):
+    """The node's binary and environment: the package's, or `node` with the libraries of its directory first."""
+    if not node:
+        return subprocess.run(['bash', '-c', 'echo $(catkin_find top_sim top_sim_node | head -1)'], env=env,
+                              capture_output=True, universal_newlines=True).stdout.strip(), env
+    node = os.path.abspath(node)
+    env = dict(env, LD_LIBRARY_PATH=os.path.dirname(node) + ':' + env.get('LD_LIBRARY_PATH', ''))
+    return node, env
+
+
+def start_node(env, log_path, timeout, node=''):
+    node_bin, env = node_command(env, node)
     log = open(log_path, 'w')
     proc = subprocess.Popen([node_bin, '__name:=' + NODE.lstrip('/')], env=env, stdout=log, stderr=subprocess.STDOUT,
                             start_new_session=True)
@@ -125,13 +141,13 @@ def wait_for_all_tops(rospy, tops, timeout):
         time.sleep(0.5)
 
 
-def measure(args, env, tops, rate, tf, index):
+def measure(args, env, tops, rate, tf, index, node=('package', '')):
     import rospy
     import top_sim.msg as top_sim_msg
-    log_path = os.path.join(args.log_dir, 'scale_%d_%g_%s.log' % (tops, rate, 'tf' if tf else 'notf'))
+    log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
     set_parameters(env, tops, rate, tf)
     t_start = time.perf_counter()
-    proc, pid = start_node(env, log_path, timeout=600)
+    proc, pid = start_node(env, log_path, timeout=600, node=node[1])
     subs = []
     try:
         wait_for_all_tops(rospy, tops, timeout=600)
@@ -153,11 +169,15 @@ def measure(args, env, tops, rate, tf, index):
         t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
         cpu = (c1 - c0) / nh.CLK_TCK / (t1 - t0)
         lat = latency.samples
+        states_hz = states.rate(t0, t1)
         d = diag.values
         return {
-            'tops': tops, 'rate_hz': rate, 'tf': tf, 'startup_s': round(startup, 2),
+            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0], 'run': index,
+            'startup_s': round(startup, 2),
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
+            'cpu_us_per_top_per_tick': round(1e6 * cpu / (tops * rate), 2),
+            'cpu_us_per_top_per_tick_received': round(1e6 * cpu / (tops * states_hz), 2) if states_hz > 0 else None,
             'latency_samples': len(lat),
             'latency_p50_ms': round(1e3 * statistics.median(lat), 2) if lat else None,
             'latency_max_ms': round(1e3 * max(lat), 2) if lat else None,
@@ -176,6 +196,9 @@ def parse_args():
     p.add_argument('--configs', default='1:200,10:200,100:200,1000:50,1000:50:notf')
     p.add_argument('--seconds', type=float, default=20.0)
     p.add_argument('--warmup', type=float, default=5.0)
+    p.add_argument('--repeat', type=int, default=1)
+    p.add_argument('--node', action='append', default=[],
+                   help="LABEL=BIN: a top_sim_node build to run (BIN empty: the package's); repeatable")
     p.add_argument('--json', default='')
     p.add_argument('--log-dir', default='/tmp/top_sim_scale')
     return p.parse_args()
@@ -190,30 +213,68 @@ def main():
     try:
         import rospy
         rospy.init_node('top_sim_scale_bench', anonymous=True, disable_signals=True)
-        for i, c in enumerate(args.configs.split(',')):
-            parts = c.split(':')
-            tops, rate, tf = int(parts[0]), float(parts[1]), not (len(parts) > 2 and parts[2] == 'notf')
-            r = measure(args, env, tops, rate, tf, i)
-            print(json.dumps(r), flush=True)
-            results.append(r)
+        nodes = [tuple(n.split('=', 1)) if '=' in n else (n, n) for n in args.node] or [('package', '')]
+        for run in range(args.repeat):
+            for c in args.configs.split(','):
+                parts = c.split(':')
+                tops, rate, tf = int(parts[0]), float(parts[1]), not (len(parts) > 2 and parts[2] == 'notf')
+                for node in nodes:
+                    r = measure(args, env, tops, rate, tf, run, node)
+                    print(json.dumps(r), flush=True)
+                    results.append(r)
     finally:
         nh.stop_group(master)
+    table = medians(results)
     if args.json:
         with open(args.json, 'w') as f:
-            json.dump({'seconds': args.seconds, 'warmup': args.warmup, 'results': results}, f, indent=1)
-    print(markdown(results))
+            json.dump({'seconds': args.seconds, 'warmup': args.warmup, 'repeat': args.repeat,
+                       'commit': git_commit(), 'medians': table, 'results': results}, f, indent=1)
+    print(markdown(table))
+
+
+def git_commit():
+    r = subprocess.run(['git', '-C', nh.REPO, 'rev-parse', '--short', 'HEAD'], capture_output=True,
+                       universal_newlines=True)
+    return r.stdout.strip()
+
+
+def number(v):
+    """A figure as a float (diagnostics give strings); None when there is none."""
+    try:
+        return float(v)
+    except (TypeError, ValueError):
+        return None
+
+
+def medians(results):
+    """Per configuration (in the order first run), the median of each figure over its runs; behind as min-max."""
+    groups = {}
+    for r in results:
+        groups.setdefault((r.get('node', 'package'), r['tops'], r['rate_hz'], r['tf']), []).append(r)
+    table = []
+    for (node, tops, rate, tf), runs in groups.items():
+        m = {'node': node, 'tops': tops, 'rate_hz': rate, 'tf': tf, 'runs': len(runs)}
+        for key, value in runs[0].items():
+            if key in m or key in ('node', 'run') or isinstance(value, bool):
+                continue
+            values = [number(r[key]) for r in runs if number(r[key]) is not None]
+            m[key] = statistics.median(values) if values else None
+        behind = [number(r['tops_behind']) for r in runs if number(r['tops_behind']) is not None]
+        m['tops_behind_range'] = '%d-%d' % (min(behind), max(behind)) if behind else None
+        table.append(m)
+    return table
 
 
 def markdown(results):
-    """The table of docs/node_benchmark.md."""
-    rows = ['| tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
-            '[us per s] | command latency p50 / max [ms] | tops behind | start-up [s] | load |',
-            '|---|---|---|---|---|---|---|---|---|---|']
+    """The table of docs/node_benchmark.md (medians over the runs; tops behind: the runs' range)."""
+    rows = ['| node | tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
+            '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | load '
+            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|---|']
     for r in results:
-        rows.append('| %d | %g | %s | %.1f | %.3f | %.0f | %s / %s | %s | %.1f | %.1f-%.1f |' % (
-            r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
-            r['cpu_us_per_top_per_s'], r['latency_p50_ms'], r['latency_max_ms'], r['tops_behind'], r['startup_s'],
-            r['load_before'], r['load_after']))
+        ms = ['-' if r[k] is None else '%.1f' % r[k] for k in ('latency_p50_ms', 'latency_max_ms')]
+        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
+            r['node'], r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
+            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], r['load_before'], r['load_after'], r['runs']))
     return '\n'.join(rows)
 
 

@@ -1,7 +1,7 @@
 # The ROS node, messages, dynamic_reconfigure and rostests (included after the core targets exist).
 find_package(catkin REQUIRED COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
-  tf2 tf2_ros diagnostic_updater dynamic_reconfigure message_generation roslib)
+  tf2 tf2_ros tf2_msgs diagnostic_updater dynamic_reconfigure message_generation roslib)
 
 add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg TopStateArray.msg)
 add_service_files(DIRECTORY srv FILES Spawn.srv Kill.srv ListTops.srv)
@@ -12,12 +12,13 @@ catkin_package(
   INCLUDE_DIRS include
   LIBRARIES top_sim_core
   CATKIN_DEPENDS message_runtime roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs
-                 rosgraph_msgs tf2 tf2_ros diagnostic_updater dynamic_reconfigure roslib)
+                 rosgraph_msgs tf2 tf2_ros tf2_msgs diagnostic_updater dynamic_reconfigure roslib)
 
 # The node's parts (docs/architecture.md, "The ROS node"), shared by the node and its unit tests.
 add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/node_parameters.cpp
   src/ros/top_input.cpp src/ros/node_top.cpp src/ros/top_set.cpp src/ros/state_output.cpp
-  src/ros/node_diagnostics.cpp src/ros/node_reconfigure.cpp src/ros/top_mesh.cpp src/ros/markers.cpp)
+  src/ros/node_diagnostics.cpp src/ros/node_reconfigure.cpp src/ros/top_mesh.cpp src/ros/markers.cpp
+  src/ros/trail.cpp)
 target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
 add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)

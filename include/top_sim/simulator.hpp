@@ -19,6 +19,7 @@
 #include "top_sim/energy.hpp"
 #include "top_sim/flight.hpp"
 #include "top_sim/integrators.hpp"
+#include "top_sim/pose.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/snapshot.hpp"
 #include "top_sim/stationary.hpp"
@@ -65,6 +66,8 @@ class Simulator {
   // energy) and caches it; the regime is that state's classification with the hysteresis of the last regime
   // cadence point (never committed by a read).
   Snapshot snapshot() const;
+  // The snapshot's placing fields alone (tf, trails): no analysis, so reading it every tick costs no sample.
+  TopPose pose() const { return top_pose(model_, y_, t_); }
   const StepperStats& stats() const { return numeric_stepper().stats; }
   ContactFault fault() const { return fault_; }
   const std::string& fault_message() const { return fault_message_; }

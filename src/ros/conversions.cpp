@@ -137,7 +137,7 @@ top_sim::Snapshot to_snapshot(const top_sim::TopState& m, std::string& error) {
   return s;
 }
 
-void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+void to_transforms(const top_sim::TopPose& s, const ros::Time& stamp, const Frames& frames,
                    geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top) {
   world_plane.header.stamp = stamp;
   world_plane.header.frame_id = frames.world;
@@ -151,7 +151,7 @@ void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Fra
   plane_top.transform.rotation = quaternion(s.orientation.normalized());
 }
 
-void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+void to_contact_transform(const top_sim::TopPose& s, const ros::Time& stamp, const Frames& frames,
                           geometry_msgs::TransformStamped& plane_contact) {
   plane_contact.header.stamp = stamp;
   plane_contact.header.frame_id = frames.plane;
@@ -160,7 +160,7 @@ void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, co
   plane_contact.transform.rotation = quaternion(Eigen::Quaterniond::Identity());
 }
 
-void to_grid_transform(const top_sim::Snapshot& s, double pitch, const ros::Time& stamp, const Frames& frames,
+void to_grid_transform(const top_sim::TopPose& s, double pitch, const ros::Time& stamp, const Frames& frames,
                        geometry_msgs::TransformStamped& plane_grid) {
   const Eigen::Vector3d centre(pitch * std::round(s.contact_point.x() / pitch),
                                pitch * std::round(s.contact_point.y() / pitch), 0.0);

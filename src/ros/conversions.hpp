@@ -9,6 +9,7 @@
 #include "top_sim/TopState.h"
 #include "top_sim/command.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/pose.hpp"
 #include "top_sim/snapshot.hpp"
 
 namespace top_sim_ros {
@@ -34,17 +35,18 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
 // out of range, a non-finite number).
 top_sim::Snapshot to_snapshot(const top_sim::TopState& msg, std::string& error);
 
+// The frames read the top's pose alone (Simulator::pose(): no sample analysed for tf).
 // world -> plane (rotation alpha about x) and plane -> top (centre of mass, body axes).
-void to_transforms(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+void to_transforms(const top_sim::TopPose& s, const ros::Time& stamp, const Frames& frames,
                    geometry_msgs::TransformStamped& world_plane, geometry_msgs::TransformStamped& plane_top);
 
 // plane -> contact: the contact point with the plane's axes.
-void to_contact_transform(const top_sim::Snapshot& s, const ros::Time& stamp, const Frames& frames,
+void to_contact_transform(const top_sim::TopPose& s, const ros::Time& stamp, const Frames& frames,
                           geometry_msgs::TransformStamped& plane_contact);
 
 // plane -> grid: the contact point snapped to multiples of `pitch` in the plane, plane axes; lines drawn about
 // its origin at multiples of the pitch keep their place on the plane while the grid follows the top.
-void to_grid_transform(const top_sim::Snapshot& s, double pitch, const ros::Time& stamp, const Frames& frames,
+void to_grid_transform(const top_sim::TopPose& s, double pitch, const ros::Time& stamp, const Frames& frames,
                        geometry_msgs::TransformStamped& plane_grid);
 
 // The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`. A new friction

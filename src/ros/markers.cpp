@@ -195,14 +195,13 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
   add_contact_markers(s, shape, style, colour, frames.contact, stamp, out);
 }
 
-visualization_msgs::Marker trail_marker(const nav_msgs::Path& path, const ros::Time& stamp,
-                                        const std::string& plane_frame) {
+visualization_msgs::Marker trail_marker(const Trail& path, const ros::Time& stamp, const std::string& plane_frame) {
   using visualization_msgs::Marker;
   Marker trail = marker(plane_frame, stamp, "trail", kTrailMarker, Marker::LINE_STRIP,
                         {1.0f, 0.78f, 0.0f});
   trail.scale.x = 0.0015;  // line width [m]
-  trail.points.reserve(path.poses.size());
-  for (const auto& p : path.poses) trail.points.push_back(p.pose.position);
+  trail.points.reserve(path.points().size());
+  for (const Trail::Point& p : path.points()) trail.points.push_back(point(p.position));
   if (trail.points.size() < 2) trail.action = Marker::DELETE;  // rviz rejects a strip of fewer than two points
   return trail;
 }

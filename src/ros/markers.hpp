@@ -4,11 +4,11 @@
 
 #include <string>
 
-#include <nav_msgs/Path.h>
 #include <ros/time.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include "conversions.hpp"
+#include "trail.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/snapshot.hpp"
 
@@ -44,6 +44,6 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);
 
 // The trail (the ~path's poses, in the plane frame) as a LINE_STRIP in namespace "trail".
-visualization_msgs::Marker trail_marker(const nav_msgs::Path& path, const ros::Time& stamp, const std::string& plane_frame);
+visualization_msgs::Marker trail_marker(const Trail& path, const ros::Time& stamp, const std::string& plane_frame);
 
 }  // namespace top_sim_ros

@@ -38,7 +38,7 @@ void NodeTop::advance(double wall, double budget, bool paused) {
 
 void NodeTop::reset(double wall) {
   sim_->reset();
-  output.trail.poses.clear();
+  output.trail.clear();
   fault_reported_ = false;
   pacer_.reanchor(wall, sim_->time(), false);  // time keeps running: keep the window
 }

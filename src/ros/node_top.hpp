@@ -7,11 +7,11 @@
 #include <memory>
 #include <string>
 
-#include <nav_msgs/Path.h>
 #include <ros/ros.h>
 
 #include "conversions.hpp"
 #include "top_input.hpp"
+#include "trail.hpp"
 #include "top_sim/pacing.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
@@ -25,7 +25,7 @@ struct TopOutput {
   // among all of the node's publications by name, which with thousands of tops cost more than the physics.
   // Shared with the callbacks, which roscpp may still run after the top is gone.
   std::shared_ptr<int> state_subscribers = std::make_shared<int>(0), path_subscribers = std::make_shared<int>(0);
-  nav_msgs::Path trail;     // contact-point trail
+  Trail trail;              // contact-point trail
   ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
 };
 

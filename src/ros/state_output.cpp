@@ -11,7 +11,6 @@
 #include "markers.hpp"
 
 #include "top_sim/TopState.h"
-#include "top_sim/TopStateArray.h"
 
 namespace top_sim_ros {
 
@@ -23,6 +22,7 @@ StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePa
   };
   follow_sub_ = pnh.subscribe<std_msgs::String>("follow", 1, follow);
   states_ = pnh.advertise<top_sim::TopStateArray>("top_states", 10);
+  tf_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);  // as tf2_ros::TransformBroadcaster does, message kept
   if (params_.publish_clock) clock_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
   if (!params_.lcm_url.empty()) open_lcm();
 }
@@ -75,66 +75,88 @@ void StateOutput::close(NodeTop& top) {
 }
 
 void StateOutput::publish(TopSet& tops, double wall, bool paused, double requested_factor) {
-  const bool array = states_.getNumSubscribers() > 0;
+  TickFlags flags;
+  flags.array = states_.getNumSubscribers() > 0;
+  flags.paused = paused;
+  flags.requested_factor = requested_factor;
   markers_watched_ = markers_.getNumSubscribers() > 0;
-  top_sim::TopStateArray all;
-  std::vector<geometry_msgs::TransformStamped> tf;
-  tf.reserve(2 * tops.size());
-  if (array) {
-    all.names.reserve(tops.size());
-    all.states.reserve(tops.size());
+  states_used_ = tf_used_ = 0;
+  for (auto& t : tops) publish_top(*t, flags);
+  if (flags.array) {
+    all_.names.resize(states_used_);
+    all_.states.resize(states_used_);
+    all_.header.stamp = stamp(tops.launch_top());
+    all_.header.frame_id = params_.frames.world;
+    states_.publish(all_);
   }
-  for (auto& t : tops) {
-    NodeTop& top = *t;
-    const top_sim::Snapshot s = top.sim().snapshot();
-    if (!top_sim::all_finite(s)) {
-      ROS_ERROR_THROTTLE(1.0, "top_sim_node: top %s: non-finite state at t = %g s: not published (call ~reset)",
-                         top.name().c_str(), s.t);
-      continue;
-    }
-    const ros::Time stamp = this->stamp(top);
-    update_trail(top, s, stamp);
-    add_transforms(top, s, stamp, tf);
-    if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), requested_factor, paused);
-    const bool subscribed = *top.output.state_subscribers > 0;
-    if (!subscribed && !array) continue;  // a message nobody reads is not built (thousands of tops)
-    top_sim::TopState msg;
-    to_msg(s, stamp, top.frames().plane, msg);
-    msg.real_time_factor = top.pacer().achieved_factor();
-    msg.requested_real_time_factor = requested_factor;
-    msg.paused = paused;
-    if (subscribed) top.output.state.publish(msg);
-    if (array) {
-      all.names.push_back(top.name());
-      all.states.push_back(std::move(msg));
-    }
+  add_follow_transform(tops);
+  if (tf_used_ > 0) {
+    tf_msg_.transforms.resize(tf_used_);
+    tf_.publish(tf_msg_);
   }
-  if (array) {
-    all.header.stamp = stamp(tops.launch_top());
-    all.header.frame_id = params_.frames.world;
-    states_.publish(all);
-  }
-  add_follow_transform(tops, tf);
-  if (!tf.empty()) tf_.sendTransform(tf);
   publish_clock(tops.launch_top());
   publish_markers(tops, wall);
   publish_paths(tops, wall);
   ++published_;
 }
 
+// A top's trail and frames come from its pose; the full snapshot (the sample's analysis) only when a TopState of it
+// is read, or for the launch-time top (LCM, diagnostics): thousands of tops seen through tf alone cost no sample.
+void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
+  const bool subscribed = *top.output.state_subscribers > 0;
+  const bool full = flags.array || subscribed || top.launch_top();
+  top_sim::Snapshot s;
+  if (full) s = top.sim().snapshot();
+  const top_sim::TopPose pose = top.sim().pose();
+  if (full ? !top_sim::all_finite(s) : !top_sim::all_finite(pose)) {
+    ROS_ERROR_THROTTLE(1.0, "top_sim_node: top %s: non-finite state at t = %g s: not published (call ~reset)",
+                       top.name().c_str(), pose.t);
+    return;
+  }
+  const ros::Time stamp = this->stamp(top);
+  top.output.trail.add(pose.contact_point, stamp, params_.path_resolution,
+                       static_cast<std::size_t>(params_.path_length));
+  add_transforms(top, pose, stamp);
+  if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused);
+  if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
+  top_sim::TopState& msg = flags.array ? next_state(top.name()) : own_;
+  fill_state(top, s, stamp, flags, msg);
+  if (subscribed) top.output.state.publish(msg);  // serialised now: the kept message may change next tick
+}
+
+void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
+                             const TickFlags& flags, top_sim::TopState& msg) const {
+  to_msg(s, stamp, top.frames().plane, msg);
+  msg.real_time_factor = top.pacer().achieved_factor();
+  msg.requested_real_time_factor = flags.requested_factor;
+  msg.paused = flags.paused;
+}
+
+// The next entry of the array, reused from the last tick when there is one (its strings keep their storage).
+top_sim::TopState& StateOutput::next_state(const std::string& name) {
+  if (states_used_ == all_.states.size()) {
+    all_.states.emplace_back();
+    all_.names.emplace_back();
+  }
+  all_.names[states_used_] = name;
+  return all_.states[states_used_++];
+}
+
+geometry_msgs::TransformStamped& StateOutput::next_transform() {
+  if (tf_used_ == tf_msg_.transforms.size()) tf_msg_.transforms.emplace_back();
+  return tf_msg_.transforms[tf_used_++];
+}
+
 // tf only when the top's time moved (a repeated stamp is dropped by listeners as TF_REPEATED_DATA).
-void StateOutput::add_transforms(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
-                                 std::vector<geometry_msgs::TransformStamped>& tf) {
+void StateOutput::add_transforms(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp) {
   if (!params_.publish_tf || !(stamp > top.output.last_tf_stamp)) return;
-  geometry_msgs::TransformStamped wp, pt;
-  to_transforms(s, stamp, top.frames(), wp, pt);
-  tf.push_back(wp);
-  tf.push_back(pt);
-  if (markers_watched_) {  // only markers need it: thousands of unwatched tops send two transforms each
-    to_contact_transform(s, stamp, top.frames(), pt);
-    tf.push_back(pt);
-    to_grid_transform(s, params_.grid_pitch, stamp, top.frames(), pt);
-    tf.push_back(pt);
+  const std::size_t i = tf_used_;  // two entries taken first: taking one may move the vector
+  next_transform();
+  next_transform();
+  to_transforms(pose, stamp, top.frames(), tf_msg_.transforms[i], tf_msg_.transforms[i + 1]);
+  if (markers_watched_) {  // only markers need them: thousands of unwatched tops send two transforms each
+    to_contact_transform(pose, stamp, top.frames(), next_transform());
+    to_grid_transform(pose, params_.grid_pitch, stamp, top.frames(), next_transform());
   }
   top.output.last_tf_stamp = stamp;
 }
@@ -165,18 +187,16 @@ NodeTop& StateOutput::followed_top(TopSet& tops) {
 }
 
 // follow: at the followed top's contact point with its plane's axes, stamped as that top's tf.
-void StateOutput::add_follow_transform(TopSet& tops, std::vector<geometry_msgs::TransformStamped>& tf) {
+void StateOutput::add_follow_transform(TopSet& tops) {
   NodeTop& top = followed_top(tops);
   if (!params_.publish_tf || params_.follow_frame.empty()) return;
-  const top_sim::Snapshot s = top.sim().snapshot();
-  if (!top_sim::all_finite(s)) return;
+  const top_sim::TopPose pose = top.sim().pose();
+  if (!top_sim::all_finite(pose)) return;
+  if (!(top.output.last_tf_stamp > last_follow_stamp_)) return;  // a repeated stamp is TF_REPEATED_DATA
   Frames frames = top.frames();
   frames.contact = params_.follow_frame;
-  geometry_msgs::TransformStamped follow;
-  to_contact_transform(s, top.output.last_tf_stamp, frames, follow);
-  if (!(follow.header.stamp > last_follow_stamp_)) return;  // a repeated stamp is TF_REPEATED_DATA
-  last_follow_stamp_ = follow.header.stamp;
-  tf.push_back(follow);
+  to_contact_transform(pose, top.output.last_tf_stamp, frames, next_transform());
+  last_follow_stamp_ = top.output.last_tf_stamp;
 }
 
 // /clock follows the launch-time top, which is never removed and whose time never goes back (reset included).
@@ -193,7 +213,7 @@ void StateOutput::publish_markers(TopSet& tops, double wall) {
   if (wall - last_marker_wall_ < 1.0 / params_.marker_rate || markers_.getNumSubscribers() == 0) return;
   visualization_msgs::MarkerArray markers;
   for (auto& t : tops) {
-    trim_trail(t->output.trail);
+    t->output.trail.trim(params_.trail_seconds);
     const top_sim::Snapshot s = t->sim().snapshot();
     if (top_sim::all_finite(s)) add_markers(*t, s, stamp(*t), markers);
   }
@@ -206,53 +226,13 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   for (auto& t : tops) {
     TopOutput& out = t->output;
     if (*out.path_subscribers <= 0) continue;
-    trim_trail(out.trail);
-    out.trail.header.stamp = stamp(*t);
-    out.trail.header.frame_id = t->frames().plane;
-    out.path.publish(out.trail);
+    out.trail.trim(params_.trail_seconds);
+    out.trail.to_path(t->frames().plane, path_);
+    path_.header.stamp = stamp(*t);
+    path_.header.frame_id = t->frames().plane;
+    out.path.publish(path_);  // serialised now: path_ serves the next top
   }
   last_path_wall_ = wall;
-}
-
-// Contact-point trail: a pose each time the point has moved path_resolution, over the last trail_seconds.
-void StateOutput::update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp) {
-  nav_msgs::Path& path = top.output.trail;
-  const Eigen::Vector3d p = s.contact_point;
-  if (!path.poses.empty() && params_.path_resolution > 0.0) {
-    const auto& q = path.poses.back().pose.position;
-    if ((p - Eigen::Vector3d(q.x, q.y, q.z)).norm() < params_.path_resolution) return;
-  }
-  geometry_msgs::PoseStamped ps;
-  ps.header.stamp = stamp;
-  ps.header.frame_id = top.frames().plane;
-  ps.pose.position.x = p.x();
-  ps.pose.position.y = p.y();
-  ps.pose.position.z = p.z();
-  ps.pose.orientation.w = 1.0;
-  path.poses.push_back(ps);
-  if (path.poses.size() > static_cast<std::size_t>(params_.path_length)) thin_trail(path);
-}
-
-// Over path_length poses: every other pose of the older half goes, so the trail still covers trail_seconds, its
-// old part coarser (a fast top's trail would otherwise cover a fraction of a second).
-void StateOutput::thin_trail(nav_msgs::Path& path) const {
-  auto& poses = path.poses;
-  const std::size_t half = poses.size() / 2;
-  std::size_t kept = 1;  // the oldest pose stays: the trail's start
-  for (std::size_t i = 1; i < half; ++i)
-    if (i % 2 == 0) poses[kept++] = std::move(poses[i]);
-  poses.erase(poses.begin() + kept, poses.begin() + half);
-}
-
-// Poses older than trail_seconds before the newest go (before each publication; a pose's stamp is its time).
-void StateOutput::trim_trail(nav_msgs::Path& path) const {
-  auto& poses = path.poses;
-  if (poses.empty()) return;
-  const ros::Time newest = poses.back().header.stamp;
-  const double keep_from = newest.toSec() - params_.trail_seconds;
-  std::size_t stale = 0;
-  while (stale + 1 < poses.size() && poses[stale].header.stamp.toSec() < keep_from) ++stale;
-  if (stale > 0) poses.erase(poses.begin(), poses.begin() + stale);
 }
 
 void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor,

@@ -8,14 +8,17 @@
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
+#include <nav_msgs/Path.h>
+#include <tf2_msgs/TFMessage.h>
 #include <visualization_msgs/MarkerArray.h>
 
 #include <ros/ros.h>
 
 #include "node_parameters.hpp"
 #include "top_set.hpp"
+#include "top_sim/TopStateArray.h"
+#include "top_sim/pose.hpp"
 #include "top_sim/snapshot.hpp"
-#include <tf2_ros/transform_broadcaster.h>
 #ifdef TOP_SIM_HAVE_LCM
 #include "lcm_publisher.hpp"
 #endif
@@ -29,10 +32,11 @@ class StateOutput {
 
   void open(NodeTop& top, ros::NodeHandle& pnh);  // advertises the top's top_state and path
   void close(NodeTop& top);                       // deletes its markers in rviz
-  void clear_trail(NodeTop& top) { top.output.trail.poses.clear(); }
+  void clear_trail(NodeTop& top) { top.output.trail.clear(); }
   const std::string& followed() const { return follow_; }
 
-  // One period's output for every top.
+  // One period's output for every top: one TFMessage with every top's frames, one top_states array; the messages
+  // are kept from tick to tick and refilled in place (no per-top allocation with thousands of tops).
   void publish(TopSet& tops, double wall, bool paused, double requested_factor);
 
   ros::Time stamp(const NodeTop& top) const;  // origin + the top's spawn offset + its simulated time
@@ -40,29 +44,40 @@ class StateOutput {
   std::size_t published() const { return published_; }
 
  private:
-  void add_transforms(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
-                      std::vector<geometry_msgs::TransformStamped>& tf);
+  struct TickFlags {  // who reads what this tick
+    bool array = false;
+    bool paused = false;
+    double requested_factor = 0.0;
+  };
+  void publish_top(NodeTop& top, const TickFlags& flags);
+  void fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp, const TickFlags& flags,
+                  top_sim::TopState& msg) const;
+  top_sim::TopState& next_state(const std::string& name);
+  geometry_msgs::TransformStamped& next_transform();
+  void add_transforms(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp);
   void publish_clock(const NodeTop& launch_top);
   void on_follow(const std::string& name) { follow_request_ = name; }
   NodeTop& followed_top(TopSet& tops);
-  void add_follow_transform(TopSet& tops, std::vector<geometry_msgs::TransformStamped>& tf);
+  void add_follow_transform(TopSet& tops);
   void add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
                    visualization_msgs::MarkerArray& out) const;
   void publish_markers(TopSet& tops, double wall);
   void publish_paths(TopSet& tops, double wall);
-  void update_trail(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp);
-  void trim_trail(nav_msgs::Path& path) const;
-  void thin_trail(nav_msgs::Path& path) const;
   void publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor, bool paused);
   void open_lcm();
 
   NodeParameters params_;
   double stamp_origin_;
-  ros::Publisher markers_, states_, clock_;
+  ros::Publisher markers_, states_, clock_, tf_;
   ros::Subscriber follow_sub_;
   std::string follow_, follow_request_;  // the followed top's name ("" = launch-time top); a name asked on ~follow
   bool markers_watched_ = false;         // ~markers has subscribers this tick: contact frames are needed
-  tf2_ros::TransformBroadcaster tf_;
+  // The tick's messages, kept across ticks: the first `states_used_` / `tf_used_` entries are this tick's.
+  top_sim::TopStateArray all_;
+  top_sim::TopState own_;  // a top's own top_state when the array is not read
+  tf2_msgs::TFMessage tf_msg_;
+  nav_msgs::Path path_;
+  std::size_t states_used_ = 0, tf_used_ = 0;
   ros::Time last_clock_, last_follow_stamp_;
   double last_marker_wall_ = 0.0, last_path_wall_ = 0.0;
   std::size_t published_ = 0;

@@ -5,6 +5,8 @@
 // the budget), state_output (publishing), node_diagnostics, node_reconfigure.
 #include <ros/ros.h>
 
+#include <malloc.h>
+
 #include <memory>
 #include <sstream>
 
@@ -305,6 +307,10 @@ class TopSimNode {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // roscpp serialises each top_states array (about 0.5 kB per top) into a new buffer: taken from the heap and kept
+  // there, instead of mapped and page-faulted in afresh every tick (perf: 2 % of the node at 1000 tops).
+  mallopt(M_MMAP_THRESHOLD, 16 << 20);
+  mallopt(M_TRIM_THRESHOLD, 64 << 20);
   ros::init(argc, argv, "top_sim_node");
   TopSimNode node;
   if (!node.init()) return 2;

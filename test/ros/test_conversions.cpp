@@ -125,7 +125,7 @@ TEST(TopCommand, EmptyCommandIsReported) {
 }
 
 TEST(Transforms, PlaneIsTiltedByAlphaAboutXAndUphillRises) {
-  top_sim::Snapshot s;
+  top_sim::TopPose s;
   s.alpha = 0.3;
   s.com = Eigen::Vector3d(0.1, 0.2, 0.01);
   geometry_msgs::TransformStamped wp, pt;
@@ -308,8 +308,10 @@ TEST(Markers, TopMarkersAreAttachedToFramesThatTfMoves) {
 TEST(Markers, GridIsSnappedToThePitchAroundTheContactPoint) {
   top_sim::Snapshot s;
   s.contact_point = Eigen::Vector3d(1234.5678, -98.7654, 0.0);
+  top_sim::TopPose pose;  // what tf reads
+  pose.contact_point = s.contact_point;
   geometry_msgs::TransformStamped g;
-  top_sim_ros::to_grid_transform(s, 0.05, ros::Time(1.0), top_sim_ros::Frames(), g);
+  top_sim_ros::to_grid_transform(pose, 0.05, ros::Time(1.0), top_sim_ros::Frames(), g);
   EXPECT_EQ(g.header.frame_id, "plane");
   EXPECT_EQ(g.child_frame_id, "grid");
   for (const double c : {g.transform.translation.x, g.transform.translation.y})
@@ -474,7 +476,7 @@ TEST(Transforms, TopFrameTurnsWithTheSpin) {
   top_sim::Simulator sim(top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml"));
   auto body_axes = [&]() {
     geometry_msgs::TransformStamped wp, pt;
-    top_sim_ros::to_transforms(sim.snapshot(), ros::Time(1.0), top_sim_ros::Frames(), wp, pt);
+    top_sim_ros::to_transforms(sim.pose(), ros::Time(1.0), top_sim_ros::Frames(), wp, pt);
     const auto& q = pt.transform.rotation;
     const Eigen::Quaterniond r(q.w, q.x, q.y, q.z);
     return std::make_pair(Eigen::Vector3d(r * Eigen::Vector3d::UnitX()), Eigen::Vector3d(r * Eigen::Vector3d::UnitZ()));

@@ -1,0 +1,26 @@
+#include "top_sim/pose.hpp"
+
+#include <cmath>
+
+#include "top_sim/orientation.hpp"
+
+namespace top_sim {
+
+TopPose top_pose(const Model& model, const StateVector& y, double t) {
+  TopPose p;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  p.t = t;
+  p.alpha = model.plane.inclination;
+  p.tip_center = Eigen::Vector3d(y[idx::x], y[idx::x + 1], model.top.tip_radius + y[idx::gap]);
+  p.com = p.tip_center + model.top.com_offset * f_hat;
+  p.orientation = body_orientation(f_hat, y[idx::psi]);
+  p.contact_point = Eigen::Vector3d(y[idx::x], y[idx::x + 1], 0.0);
+  return p;
+}
+
+bool all_finite(const TopPose& p) {
+  return std::isfinite(p.t) && std::isfinite(p.alpha) && p.tip_center.allFinite() && p.com.allFinite() &&
+         p.orientation.coeffs().allFinite() && p.contact_point.allFinite();
+}
+
+}  // namespace top_sim

@@ -1,0 +1,43 @@
+#include "trail.hpp"
+
+namespace top_sim_ros {
+
+void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolution, std::size_t length) {
+  if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
+  points_.push_back({stamp, p});
+  newest_ = p;
+  if (points_.size() > length) thin();
+}
+
+// The oldest point stays (the trail's start); of the rest of the older half, every other one.
+void Trail::thin() {
+  const std::size_t half = points_.size() / 2;
+  std::size_t kept = 1;
+  for (std::size_t i = 1; i < half; ++i)
+    if (i % 2 == 0) points_[kept++] = points_[i];
+  points_.erase(points_.begin() + kept, points_.begin() + half);
+}
+
+void Trail::trim(double seconds) {
+  if (points_.empty()) return;
+  const double keep_from = points_.back().stamp.toSec() - seconds;
+  std::size_t stale = 0;
+  while (stale + 1 < points_.size() && points_[stale].stamp.toSec() < keep_from) ++stale;
+  if (stale > 0) points_.erase(points_.begin(), points_.begin() + stale);
+}
+
+void Trail::to_path(const std::string& plane_frame, nav_msgs::Path& out) const {
+  out.poses.resize(points_.size());
+  for (std::size_t i = 0; i < points_.size(); ++i) {
+    geometry_msgs::PoseStamped& ps = out.poses[i];
+    ps.header.stamp = points_[i].stamp;
+    ps.header.frame_id = plane_frame;
+    ps.pose.position.x = points_[i].position.x();
+    ps.pose.position.y = points_[i].position.y();
+    ps.pose.position.z = points_[i].position.z();
+    ps.pose.orientation = geometry_msgs::Quaternion();
+    ps.pose.orientation.w = 1.0;
+  }
+}
+
+}  // namespace top_sim_ros
