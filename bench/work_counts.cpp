@@ -12,29 +12,7 @@
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-
-void* counted_malloc(std::size_t n) noexcept {
-  g_allocations.fetch_add(1, std::memory_order_relaxed);
-  return std::malloc(n ? n : 1);
-}
-}  // namespace
-
-// Every unaligned form is replaced so that new and delete always pair malloc with free.
-void* operator new(std::size_t n) {
-  if (void* p = counted_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "counting_new.hpp"  // replaces the global operator new for this program
 
 namespace {
 
@@ -53,9 +31,9 @@ Counts count_run(const std::string& path) {
   Counts c;
   c.seconds = scene.duration;
   top_sim::Simulator sim(scene);
-  const std::uint64_t a0 = w.sample_analyses, s0 = w.stationary_solves, m0 = g_allocations;
+  const std::uint64_t a0 = w.sample_analyses, s0 = w.stationary_solves, m0 = top_sim_counting::heap_allocations();
   sim.advance_to(scene.duration);
-  c.allocations = g_allocations - m0;
+  c.allocations = top_sim_counting::heap_allocations() - m0;
   c.analyses = w.sample_analyses - a0;
   c.solves = w.stationary_solves - s0;
   c.stats = sim.stats();

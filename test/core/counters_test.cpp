@@ -14,32 +14,7 @@
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
-namespace {
-std::atomic<std::uint64_t> g_allocations{0};
-}  // namespace
-
-// Every unaligned form is replaced, so that new and delete always pair malloc with free (AddressSanitizer checks
-// the pairing: a nothrow new left to the runtime and freed here is a mismatch, seen in std::stable_sort's buffer).
-namespace {
-void* counted_malloc(std::size_t n) noexcept {
-  ++g_allocations;
-  return std::malloc(n ? n : 1);
-}
-}  // namespace
-
-void* operator new(std::size_t n) {
-  if (void* p = counted_malloc(n)) return p;
-  throw std::bad_alloc();
-}
-void* operator new[](std::size_t n) { return operator new(n); }
-void* operator new(std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void* operator new[](std::size_t n, const std::nothrow_t&) noexcept { return counted_malloc(n); }
-void operator delete(void* p) noexcept { std::free(p); }
-void operator delete[](void* p) noexcept { std::free(p); }
-void operator delete(void* p, std::size_t) noexcept { std::free(p); }
-void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
-void operator delete(void* p, const std::nothrow_t&) noexcept { std::free(p); }
-void operator delete[](void* p, const std::nothrow_t&) noexcept { std::free(p); }
+#include "../../bench/counting_new.hpp"  // replaces the global operator new for this whole test binary
 
 namespace {
 
@@ -75,9 +50,9 @@ TEST(Counters, NoHeapAllocationWhileStepping) {
   for (const char* scene : {"default.yaml", "hopping.yaml", "coulomb.yaml"}) {
     std::unique_ptr<top_sim::Simulator> sim(warmed(scene));
     const std::uint64_t steps_before = sim->stats().steps;
-    const std::uint64_t before = g_allocations;
+    const std::uint64_t before = top_sim_counting::heap_allocations();
     const bool ok = sim->advance_to(sim->time() + 1.0);
-    const std::uint64_t allocations = g_allocations - before;
+    const std::uint64_t allocations = top_sim_counting::heap_allocations() - before;
     ASSERT_TRUE(ok) << scene;
     ASSERT_GT(sim->stats().steps - steps_before, 100u) << scene;
     EXPECT_EQ(allocations, 0u) << scene << ": " << allocations << " allocations in "
