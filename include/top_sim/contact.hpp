@@ -18,13 +18,18 @@ struct ContactKinematics {
   double slip = 0.0;                                // s in [0, 1]
 };
 
-// Inline: every right-hand side starts here.
+// The material velocity of the top at the contact point, u - R omega x n (n = e_z); inline: every right-hand side
+// starts here.
+inline Eigen::Vector3d contact_velocity(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
+  return u - model.top.tip_radius * Eigen::Vector3d(omega.y(), -omega.x(), 0.0);
+}
+
 inline ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
   ContactKinematics k;
   const double R = model.top.tip_radius;
   const double v_eps = model.regularization_speed;
   const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
-  k.v_t = u - R * omega_x_n;
+  k.v_t = contact_velocity(model, u, omega);
   k.rolling_speed = R * omega_x_n.norm();
   const double vt = k.v_t.norm();
   k.slip = vt / (u.norm() + k.rolling_speed + v_eps);

@@ -38,14 +38,6 @@ constexpr double kTiltGuard = 0.05;       // n . f_hat - cos(theta_max)
 // stick speeds and handed back above twice that (explicit steps are stable there at the usual step sizes).
 constexpr double kLayerWidth = 100.0;
 
-// |v_t| as contact_kinematics computes it (the same operations: the same bits), without the slip and direction.
-double contact_speed(const Model& model, const StateVector& y) {
-  const Eigen::Vector3d u = in_plane_velocity(y), omega = angular_velocity(y);
-  const Eigen::Vector3d omega_x_n(omega.y(), -omega.x(), 0.0);  // omega x n with n = e_z
-  const Eigen::Vector3d v_t = u - model.top.tip_radius * omega_x_n;
-  return v_t.norm();
-}
-
 double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
 
 ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y) {
@@ -124,7 +116,8 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
 
 bool Simulator::in_stiff_layer(const StateVector& y, bool inside) const {
   if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
-  if (!(contact_speed(model_, y) < (inside ? 2.0 : 1.0) * layer_width_)) return false;
+  if (!(contact_velocity(model_, in_plane_velocity(y), angular_velocity(y)).norm() < (inside ? 2.0 : 1.0) * layer_width_))
+    return false;
   // A kink at v_t = 0 needs friction there: mu(0) > 0, or a slip near 1 (no rolling: a point tip, no spin).
   if (layer_kink_at_rest_) return true;
   const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
