@@ -11,8 +11,8 @@
 
 namespace top_sim {
 
-// True where the flight right-hand side is gravity and no torque: the full model, no rotor bearing torque (c = 0;
-// with c != 0 the spin exchange between shell and rotor is stepped) and gravity into the plane.
+// True where the flight has a closed form: the full model, gravity into the plane, and a rotor (if any) whose
+// bearing decay rate is finite (rotor and shell both with axial inertia).
 bool flight_in_closed_form(const Model& model);
 
 // The constants of one flight, from the state at its start t0 (all in the plane frame P).
@@ -23,8 +23,11 @@ struct FlightMotion {
   Eigen::Vector3d l_hat = Eigen::Vector3d::UnitZ();  // direction of the angular momentum L (constant)
   Eigen::Vector3d L_over_Id = Eigen::Vector3d::Zero();  // L / I_d
   double rate = 0.0;          // precession rate |L| / I_d
-  double body_rate = 0.0;     // sigma = omega . f_hat - L . f_hat / I_d: spin about f_hat relative to the precession
+  double body_rate = 0.0;     // sigma = omega . f_hat - L . f_hat / I_d at t0: spin about f_hat relative to the precession
   double axial = 0.0;         // L . f_hat (constant)
+  // The bearing: nu = nu0 exp(-decay tau) hands the rotor's spin to the shell, sigma = body_rate + exchange (1 - exp).
+  double decay = 0.0;         // c I_f / (J I_f') [1/s]; 0 without a rotor or bearing
+  double exchange = 0.0;      // J nu0 / I_f [rad/s]: the rise of w_f once the rotor has stopped relative to the shell
   double f_along = 0.0;       // f_hat = f_along l_hat + f_perp cos(theta) + f_cross sin(theta), theta = rate (t - t0)
   Eigen::Vector3d f_perp = Eigen::Vector3d::Zero(), f_cross = Eigen::Vector3d::Zero();
   // 1 + f_z = D + rho cos(theta - delta): the spin phase integrates psi' in closed form over it.

@@ -77,11 +77,21 @@ double safe_step(double gap, double gap_rate, double M) {
   return (gap_rate + std::sqrt(gap_rate * gap_rate + 2.0 * M * gap)) / M;
 }
 
+// The bearing's part of a flight: nu decays, the shell takes up its spin (psi), the bearing dissipates c nu^2.
+void apply_bearing(const Model& model, const FlightMotion& m, double tau, StateVector& y) {
+  const double nu0 = m.y0[idx::nu], k = m.decay;
+  y[idx::nu] = nu0 * std::exp(-k * tau);
+  y[idx::psi] += m.exchange * (tau + std::expm1(-k * tau) / k);  // integral of exchange (1 - exp(-k tau'))
+  y[idx::w_diss] += model.top.rotor.coupling * nu0 * nu0 * -std::expm1(-2.0 * k * tau) / (2.0 * k);
+}
+
 }  // namespace
 
 bool flight_in_closed_form(const Model& model) {
-  const bool torque_free_rotor = !model.top.has_rotor || model.top.rotor.coupling == 0.0;
-  return model.kind == ModelKind::full && torque_free_rotor && model.plane.g_plane.z() < 0.0;
+  const Top& top = model.top;
+  const bool finite_decay = !top.has_rotor || top.rotor.coupling == 0.0 ||
+                            (top.rotor.inertia_axial > 0.0 && shell_axial_inertia(top) > 0.0);
+  return model.kind == ModelKind::full && finite_decay && model.plane.g_plane.z() < 0.0;
 }
 
 FlightMotion flight_motion(const Model& model, const StateVector& y, double t) {
@@ -111,6 +121,10 @@ FlightMotion flight_motion(const Model& model, const StateVector& y, double t) {
   m.rho = std::hypot(m.f_perp.z(), m.f_cross.z());
   m.delta = std::atan2(m.f_cross.z(), m.f_perp.z());
   m.G0 = phase_integral(m.D, m.rho, -m.delta);
+  if (top.has_rotor && top.rotor.coupling > 0.0) {  // physics.md: nu' = -c nu I_f / (J I_f') in flight
+    m.decay = top.rotor.coupling * top.inertia_axial / (J * shell_axial_inertia(top));
+    m.exchange = J * nu / top.inertia_axial;
+  }
   return m;
 }
 
@@ -132,15 +146,17 @@ void flight_state(const Model& model, const FlightMotion& m, double t, StateVect
   const Eigen::Vector3d g = model.plane.g_plane;
   const Eigen::Vector3d tip = m.r_cm + tau * m.v_cm + (0.5 * tau * tau) * g - d * f;
   const Eigen::Vector3d u = m.v_cm + tau * g - d * f_dot;
-  y = m.y0;  // nu and W_diss stay: no rotor torque, no dissipation
+  y = m.y0;  // without a bearing nu and W_diss stay
   set_position(y, Eigen::Vector2d(tip.x(), tip.y()));
   set_velocity(y, Eigen::Vector2d(u.x(), u.y()));
   set_figure_axis(y, f);
-  set_angular_velocity(y, m.L_over_Id + m.body_rate * f);  // omega = L / I_d + sigma f_hat
+  const double spent = m.decay > 0.0 ? -std::expm1(-m.decay * tau) : 0.0;  // 1 - nu / nu0
+  set_angular_velocity(y, m.L_over_Id + (m.body_rate + m.exchange * spent) * f);  // omega = L / I_d + sigma f_hat
   flight_gap(model, m, t, y[idx::gap], y[idx::gap_rate]);  // bit-identical to what the touchdown search saw
   // psi' = sigma + (L_z + L . f_hat) / (I_d (1 + f_z)) (orientation.hpp with omega = L / I_d + sigma f_hat).
   const double lift = m.L_over_Id.z() + m.axial / model.top.inertia_transverse;
   y[idx::psi] = m.y0[idx::psi] + m.body_rate * tau + lift * inverse_height_integral(m, tau);
+  if (m.decay > 0.0) apply_bearing(model, m, tau, y);
 }
 
 double touchdown_time(const Model& model, const FlightMotion& m) {
