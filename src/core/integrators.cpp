@@ -75,12 +75,22 @@ class FixedStepper : public Stepper {
     y_prev_ = y;
     t_ = t;
     t_prev_ = t;
+    t_base_ = t;
+    n_since_base_ = 0;
   }
 
   void step(double t_limit) override {
     double h = dt_;
-    // Land exactly on t_limit (publish instants, events) unless it is within rounding of the current time.
-    if (t_limit > t_ && t_limit - t_ < h) h = t_limit - t_;
+    // Time is t_base_ + n dt (one rounding, not a sum of n): a run sampled at multiples of dt makes its steps.
+    double t_next = t_base_ + static_cast<double>(n_since_base_ + 1) * dt_;
+    // Land exactly on t_limit (publish instants, events); a full step that ends within rounding of it lands on it
+    // with h = dt (no extra step of a few ulps, the same steps sampled or not: the rates do not read t).
+    const double slack = 16.0 * std::numeric_limits<double>::epsilon() * std::max(std::abs(t_limit), dt_);
+    const bool lands = t_limit > t_ && t_limit - t_ < h + slack;
+    if (lands) {
+      if (t_limit - t_ < h - slack) h = t_limit - t_;
+      t_next = t_limit;
+    }
     y_prev_ = y_;
     t_prev_ = t_;
     CountingSystem sys{&system_, &stats.rhs_evaluations};
@@ -91,7 +101,13 @@ class FixedStepper : public Stepper {
       default: throw std::logic_error("FixedStepper: not a fixed-step method");
     }
     normalize_figure_axis(y_);
-    t_ += h;
+    if (lands) {
+      t_base_ = t_limit;
+      n_since_base_ = 0;
+    } else {
+      ++n_since_base_;
+    }
+    t_ = t_next;
     last_h_ = h;
     ++stats.steps;
   }
@@ -126,6 +142,8 @@ class FixedStepper : public Stepper {
   System system_;
   StateVector y_{}, y_prev_{};
   double t_ = 0.0, t_prev_ = 0.0, last_h_ = 0.0;
+  double t_base_ = 0.0;               // the last landing (reset or t_limit): time is t_base_ + n_since_base_ dt
+  std::uint64_t n_since_base_ = 0;
   odeint::euler<StateVector> euler_;
   odeint::runge_kutta4<StateVector> rk4_;
 };

@@ -443,6 +443,29 @@ TEST(IntegratorCounts, FixedStepMethodsEvaluateTheirStagesOncePerStep) {
   }
 }
 
+// Sampling must not change a fixed-step run: advancing to every multiple of dt (2 ms, not a binary fraction) or to
+// every 10 ms makes the same T / dt steps of h = dt as one run to T, and ends on the same bits. A time kept as a sum
+// of steps drifts by ulps from k dt: a sample then costs an extra step of a few ulps, or a step a few ulps short.
+TEST(IntegratorCounts, FixedStepRunsSampledAtMultiplesOfDtMakeTheSameSteps) {
+  const double dt = 2e-3, t_end = 5.0;
+  for (Method m : kFixed) {
+    SCOPED_TRACE(to_string(m));
+    std::unique_ptr<Stepper> whole = started(fixed_settings(m, dt));
+    const StateVector y_whole = run_to(*whole, t_end);
+    for (double interval : {dt, 5 * dt}) {
+      std::unique_ptr<Stepper> sampled = started(fixed_settings(m, dt));
+      StateVector y{};
+      const long n = std::lround(t_end / interval);
+      for (long k = 1; k <= n; ++k) y = run_to(*sampled, static_cast<double>(k) * interval);
+      EXPECT_EQ(sampled->stats.steps, 2500u) << "samples every " << interval;
+      EXPECT_EQ(whole->stats.steps, 2500u);
+      EXPECT_EQ(sampled->time(), t_end);
+      EXPECT_EQ(std::memcmp(y.data(), y_whole.data(), sizeof y), 0) << "samples every " << interval << ": "
+                                                                        << max_error(y, y_whole);
+    }
+  }
+}
+
 // A first step of 1 s errs ~1e-3 here, far beyond tol 1e-10: the controller must reject it, and the stats say so.
 TEST(IntegratorCounts, AdaptiveMethodsCountTheStepsTheyReject) {
   for (Method m : kAdaptive) {
