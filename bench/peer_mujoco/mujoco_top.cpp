@@ -14,6 +14,7 @@
 #include <mujoco/mujoco.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -128,6 +129,24 @@ Eigen::Vector3d MujocoTop::tip_center_plane() const {
   const Eigen::Vector3d com(d_->qpos[0], d_->qpos[1], d_->qpos[2]);
   const Eigen::Vector3d axis = quaternion(d_->qpos + 3).normalized() * Eigen::Vector3d::UnitZ();
   return top_sim::world_to_plane(scene_.model.plane.inclination, com - scene_.model.top.com_offset * axis);
+}
+
+double MujocoTop::tilt() const {
+  const Eigen::Vector3d axis = quaternion(d_->qpos + 3).normalized() * Eigen::Vector3d::UnitZ();
+  const double z = top_sim::world_to_plane(scene_.model.plane.inclination, axis).z();
+  return std::acos(std::clamp(z, -1.0, 1.0));
+}
+
+std::vector<double> MujocoTop::tilt_run(double T, double from) {
+  const double dt = m_->opt.timestep;
+  const long steps = std::lround(T / dt);
+  std::vector<double> tilts;
+  reset();
+  for (long k = 1; k <= steps; ++k) {
+    mj_step(m_, d_);
+    if (static_cast<double>(k) * dt >= from - 1e-12) tilts.push_back(tilt());
+  }
+  return tilts;
 }
 
 std::vector<Eigen::Vector2d> MujocoTop::run(double T, double interval) {

@@ -42,6 +42,9 @@ class MujocoTop {
   void set_timestep(double dt, double time_constant = 0.0);
   // Runs from the initial state to T; the in-plane contact point every `interval` (a multiple of dt), from t = 0.
   std::vector<Eigen::Vector2d> run(double T, double interval);
+  // Runs from the initial state to T; the figure axis's angle from the plane normal after every step at t >= from
+  // [rad] (untimed: the nutation measurement of bench/peer_mujoco).
+  std::vector<double> tilt_run(double T, double from);
   InitialReport initial_report();
   // Deepest penetration of the tip into the plane at the samples of the last run() [m].
   double max_penetration() const { return max_penetration_; }
@@ -49,6 +52,7 @@ class MujocoTop {
  private:
   void reset();
   Eigen::Vector3d tip_center_plane() const;
+  double tilt() const;
 
   top_sim::Scene scene_;
   mjModel_* m_ = nullptr;
