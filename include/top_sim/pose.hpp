@@ -5,6 +5,7 @@
 #include <Eigen/Geometry>
 
 #include "top_sim/model.hpp"
+#include "top_sim/snapshot.hpp"
 #include "top_sim/state.hpp"
 
 namespace top_sim {
@@ -21,6 +22,8 @@ struct TopPose {
 
 // The pose of state y of `model` at time t: geometry only (no dynamics, stationary solve or energy).
 TopPose top_pose(const Model& model, const StateVector& y, double t);
+// The placing fields of a snapshot already taken (a reader of both needs no second pose computation).
+TopPose top_pose(const Snapshot& s);
 
 bool all_finite(const TopPose& p);
 

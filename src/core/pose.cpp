@@ -18,6 +18,17 @@ TopPose top_pose(const Model& model, const StateVector& y, double t) {
   return p;
 }
 
+TopPose top_pose(const Snapshot& s) {
+  TopPose p;
+  p.t = s.t;
+  p.alpha = s.alpha;
+  p.tip_center = s.tip_center;
+  p.com = s.com;
+  p.orientation = s.orientation;
+  p.contact_point = s.contact_point;
+  return p;
+}
+
 bool all_finite(const TopPose& p) {
   return std::isfinite(p.t) && std::isfinite(p.alpha) && p.tip_center.allFinite() && p.com.allFinite() &&
          p.orientation.coeffs().allFinite() && p.contact_point.allFinite();

@@ -25,6 +25,9 @@ struct TopOutput {
   // among all of the node's publications by name, which with thousands of tops cost more than the physics.
   // Shared with the callbacks, which roscpp may still run after the top is gone.
   std::shared_ptr<int> state_subscribers = std::make_shared<int>(0), path_subscribers = std::make_shared<int>(0);
+  // Their values as of the last subscription change anywhere (StateOutput refreshes them then): read every tick
+  // next to the trail, where the counts' own allocations are a cache miss per top per tick.
+  int state_readers = 0, path_readers = 0;
   Trail trail;              // contact-point trail
   ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
 };
@@ -62,14 +65,15 @@ class NodeTop {
   TopOutput output;
 
  private:
+  // What every tick reads first, together (the publishing prefetches them for thousands of tops); the scene last.
   std::string name_, prefix_;
-  top_sim::Scene scene_;
   std::unique_ptr<top_sim::Simulator> sim_;
   top_sim::Pacer pacer_;
   Frames frames_;
   double node_time_;
   std::size_t steps_reported_ = 0, mode_switches_ = 0;
   bool fault_reported_ = false, behind_reported_ = false;
+  top_sim::Scene scene_;
 };
 
 // The frames of a spawned top NAME: NAME/<plane>, NAME/<top>, NAME/<contact> under the node's world frame.

@@ -29,12 +29,13 @@ StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePa
 
 namespace {
 
+// `changes` counts every subscription change of every top: the per-top mirrors are refreshed only then.
 template <class M>
 ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t queue,
-                       const std::shared_ptr<int>& count) {
+                       const std::shared_ptr<int>& count, const std::shared_ptr<unsigned>& changes) {
   return pnh.advertise<M>(
-      topic, queue, [count](const ros::SingleSubscriberPublisher&) { ++*count; },
-      [count](const ros::SingleSubscriberPublisher&) { --*count; });
+      topic, queue, [count, changes](const ros::SingleSubscriberPublisher&) { ++*count; ++*changes; },
+      [count, changes](const ros::SingleSubscriberPublisher&) { --*count; ++*changes; });
 }
 
 }  // namespace
@@ -42,8 +43,19 @@ ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t 
 // The callbacks run in spinOnce() on the loop's thread.
 void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
   TopOutput& out = top.output;
-  out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers);
-  out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers);
+  out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
+                                        subscription_changes_);
+  out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_);
+  ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
+}
+
+void StateOutput::refresh_readers(TopSet& tops) {
+  if (*subscription_changes_ == changes_seen_) return;
+  for (auto& t : tops) {
+    t->output.state_readers = *t->output.state_subscribers;
+    t->output.path_readers = *t->output.path_subscribers;
+  }
+  changes_seen_ = *subscription_changes_;
 }
 
 ros::Time StateOutput::stamp(const NodeTop& top) const {
@@ -74,14 +86,47 @@ void StateOutput::close(NodeTop& top) {
   markers_.publish(gone);
 }
 
+namespace {
+
+// What publish_top reads of a top, asked for ahead: with thousands of tops nothing of a top is still cached since
+// its physics, and the reads otherwise wait on memory one after the other. First the top's own fields (addresses
+// alone, nothing loaded), two tops later what they point to (the state, the model, the trail's end).
+void prefetch_fields(const NodeTop& top) {
+  const char* first = reinterpret_cast<const char*>(&top.name());  // name, prefix, the simulator's pointer
+  __builtin_prefetch(first);
+  __builtin_prefetch(first + 64);
+  __builtin_prefetch(&top.pacer());
+  __builtin_prefetch(&top.frames());
+  __builtin_prefetch(&top.output);
+  __builtin_prefetch(&top.output.trail);
+}
+
+void prefetch_pointees(const NodeTop& top) {
+  const top_sim::Simulator& sim = top.sim();
+  __builtin_prefetch(&sim.state());
+  __builtin_prefetch(reinterpret_cast<const char*>(&sim.state()) + 64);
+  __builtin_prefetch(&sim.model());
+  const std::vector<Trail::Point>& trail = top.output.trail.points();
+  __builtin_prefetch(trail.data() + trail.size(), 1);
+}
+
+}  // namespace
+
 void StateOutput::publish(TopSet& tops, double wall, bool paused, double requested_factor) {
   TickFlags flags;
   flags.array = states_.getNumSubscribers() > 0;
   flags.paused = paused;
   flags.requested_factor = requested_factor;
   markers_watched_ = markers_.getNumSubscribers() > 0;
+  refresh_readers(tops);
   states_used_ = tf_used_ = 0;
-  for (auto& t : tops) publish_top(*t, flags);
+  const std::size_t n = tops.size();
+  const TopSet::Tops::iterator top = tops.begin();
+  for (std::size_t i = 0; i < n; ++i) {
+    if (i + 4 < n) prefetch_fields(*top[i + 4]);
+    if (i + 2 < n) prefetch_pointees(*top[i + 2]);
+    publish_top(*top[i], flags);
+  }
   if (flags.array) {
     all_.names.resize(states_used_);
     all_.states.resize(states_used_);
@@ -103,11 +148,11 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
 // A top's trail and frames come from its pose; the full snapshot (the sample's analysis) only when a TopState of it
 // is read, or for the launch-time top (LCM, diagnostics): thousands of tops seen through tf alone cost no sample.
 void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
-  const bool subscribed = *top.output.state_subscribers > 0;
+  const bool subscribed = top.output.state_readers > 0;
   const bool full = flags.array || subscribed || top.launch_top();
   top_sim::Snapshot s;
   if (full) s = top.sim().snapshot();
-  const top_sim::TopPose pose = top.sim().pose();
+  const top_sim::TopPose pose = full ? top_sim::top_pose(s) : top.sim().pose();  // the snapshot holds it
   if (full ? !top_sim::all_finite(s) : !top_sim::all_finite(pose)) {
     ROS_ERROR_THROTTLE(1.0, "top_sim_node: top %s: non-finite state at t = %g s: not published (call ~reset)",
                        top.name().c_str(), pose.t);
@@ -225,7 +270,7 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   if (wall - last_path_wall_ < 1.0 / params_.path_rate) return;
   for (auto& t : tops) {
     TopOutput& out = t->output;
-    if (*out.path_subscribers <= 0) continue;
+    if (out.path_readers <= 0) continue;
     out.trail.trim(params_.trail_seconds);
     out.trail.to_path(t->frames().plane, path_);
     path_.header.stamp = stamp(*t);

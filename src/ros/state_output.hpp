@@ -49,6 +49,7 @@ class StateOutput {
     bool paused = false;
     double requested_factor = 0.0;
   };
+  void refresh_readers(TopSet& tops);  // the tops' subscriber mirrors, after a subscription changed
   void publish_top(NodeTop& top, const TickFlags& flags);
   void fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp, const TickFlags& flags,
                   top_sim::TopState& msg) const;
@@ -72,6 +73,9 @@ class StateOutput {
   ros::Subscriber follow_sub_;
   std::string follow_, follow_request_;  // the followed top's name ("" = launch-time top); a name asked on ~follow
   bool markers_watched_ = false;         // ~markers has subscribers this tick: contact frames are needed
+  // Subscription changes of the tops' own topics (shared with the publishers' callbacks) and as last refreshed.
+  std::shared_ptr<unsigned> subscription_changes_ = std::make_shared<unsigned>(0);
+  unsigned changes_seen_ = 0;
   // The tick's messages, kept across ticks: the first `states_used_` / `tf_used_` entries are this tick's.
   top_sim::TopStateArray all_;
   top_sim::TopState own_;  // a top's own top_state when the array is not read

@@ -4,6 +4,9 @@ namespace top_sim_ros {
 
 void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolution, std::size_t length) {
   if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
+  // Room for the most the trail holds, reserved at once: growing by doubling copied a trail of thousands of points
+  // into fresh pages several times in its first seconds.
+  if (points_.capacity() == 0) points_.reserve(length + 1);
   points_.push_back({stamp, p});
   newest_ = p;
   if (points_.size() > length) thin();

@@ -68,6 +68,23 @@ TEST(Pose, SimulatorPoseEqualsTheSnapshotFields) {
   EXPECT_GT(p.contact_point.norm(), 0.0);  // the top has moved: the comparison is not of two defaults
 }
 
+// The pose of a snapshot is the simulator's own pose of that state, bit for bit (the node reads it so when it
+// takes the snapshot anyway).
+TEST(Pose, PoseOfASnapshotEqualsTheSimulatorPose) {
+  Simulator sim(top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 200.0)));
+  for (double t : {0.0, 0.21, 1.3}) {
+    sim.advance_to(t);
+    const TopPose a = top_pose(sim.snapshot());
+    const TopPose b = sim.pose();
+    EXPECT_EQ(a.t, b.t);
+    EXPECT_EQ(a.alpha, b.alpha);
+    EXPECT_EQ(a.tip_center, b.tip_center);
+    EXPECT_EQ(a.com, b.com);
+    EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
+    EXPECT_EQ(a.contact_point, b.contact_point);
+  }
+}
+
 TEST(Pose, AllFiniteRejectsANonFiniteField) {
   const double bad = std::numeric_limits<double>::quiet_NaN();
   EXPECT_TRUE(all_finite(TopPose()));

@@ -1,5 +1,5 @@
 // Unit tests of the node's parts that need no master: the parameter reader (scene sources, strict types, unknown
-// keys) and the top set (names, the sharing of a tick's budget).
+// keys), the top set (names, the sharing of a tick's budget) and the contact-point trail.
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -7,6 +7,7 @@
 
 #include "node_parameters.hpp"
 #include "top_set.hpp"
+#include "trail.hpp"
 
 namespace {
 
@@ -159,6 +160,31 @@ TEST(TopSet, ACostlyTopDoesNotSlowTheOthers) {
   EXPECT_LT(set.find("slow")->sim().time(), 0.1 * target);  // 1e-8 s steps: far behind
   // The budget is checked between steps; one rk4 step is far below a millisecond. Generous for a loaded CI machine.
   EXPECT_LT(worst_tick, budget + 0.05) << "worst tick " << worst_tick << " s";
+}
+
+// A point is kept when it is path_resolution or more from the newest kept point; steps of 0.1 mm at a resolution of
+// 0.25 mm keep every third point (0, 0.3, 0.6 mm...).
+TEST(Trail, KeepsAPointOnlyWhenTheContactPointMovedTheResolution) {
+  top_sim_ros::Trail trail;
+  for (int i = 0; i < 10; ++i) trail.add(Eigen::Vector3d(1e-4 * i, 0.0, 0.0), ros::Time(i), 2.5e-4, 100);
+  ASSERT_EQ(trail.points().size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(trail.points()[k].position.x(), 3e-4 * k, 1e-15);
+}
+
+// Beyond `length` points the older half is thinned: the oldest point stays, the trail never holds more than
+// length + 1 points, and its storage is the one reserved at the first point (no copy as it grows).
+TEST(Trail, StaysWithinItsLengthKeepsItsStartAndItsStorage) {
+  top_sim_ros::Trail trail;
+  const std::size_t length = 50;
+  trail.add(Eigen::Vector3d::Zero(), ros::Time(1.0), 1e-4, length);
+  const top_sim_ros::Trail::Point* storage = trail.points().data();
+  for (int i = 1; i < 1000; ++i) {
+    trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, length);
+    ASSERT_LE(trail.points().size(), length + 1);
+    ASSERT_EQ(trail.points().data(), storage);
+  }
+  EXPECT_EQ(trail.points().front().stamp, ros::Time(1.0));
+  EXPECT_EQ(trail.points().back().stamp, ros::Time(1000.0));
 }
 
 }  // namespace
