@@ -1,12 +1,15 @@
 #include "trail.hpp"
 
+#include <algorithm>
+
 namespace top_sim_ros {
 
 void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolution, std::size_t length) {
   if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
-  // Room for the most the trail holds, reserved at once: growing by doubling copied a trail of thousands of points
-  // into fresh pages several times in its first seconds.
-  if (points_.capacity() == 0) points_.reserve(length + 1);
+  // Room for the most the trail holds (up to kReserveMost), reserved at once: growing by doubling copied a trail of
+  // thousands of points into fresh pages several times in its first seconds; a huge path_length reserves no more.
+  constexpr std::size_t kReserveMost = 8192;
+  if (points_.capacity() == 0) points_.reserve(std::min(length + 1, kReserveMost));
   points_.push_back({stamp, p});
   newest_ = p;
   if (points_.size() > length) thin();
