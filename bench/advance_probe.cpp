@@ -1,8 +1,7 @@
 // What advancing costs without a reader (issue 21, docs/performance.md): 300 s of a scene in one advance, in 300,000
 // unread advances of 1 ms, and in 300,000 advances each read with snapshot(); then one stationary solve against
-// one work-counter increment. Medians (min-max) of 5 interleaved rounds, thread CPU time. Not built by CMake:
-//   g++ -O2 -std=c++17 -Iinclude -I/usr/include/eigen3 bench/advance_probe.cpp -o /tmp/advance_probe \
-//       -Lbuild/lib -ltop_sim_core -Wl,-rpath,$PWD/build/lib && /tmp/advance_probe config/scenes/default.yaml
+// one work-counter increment. Medians (min-max) of 5 interleaved rounds, thread CPU time. Built with the other
+// bench/*.cpp where Google Benchmark is found:   build/bin/advance_probe config/scenes/default.yaml
 #include <algorithm>
 #include <atomic>
 #include <cstdio>

@@ -19,14 +19,7 @@ TopPose top_pose(const Model& model, const StateVector& y, double t) {
 }
 
 TopPose top_pose(const Snapshot& s) {
-  TopPose p;
-  p.t = s.t;
-  p.alpha = s.alpha;
-  p.tip_center = s.tip_center;
-  p.com = s.com;
-  p.orientation = s.orientation;
-  p.contact_point = s.contact_point;
-  return p;
+  return TopPose{s.t, s.alpha, s.tip_center, s.com, s.orientation, s.contact_point};
 }
 
 bool all_finite(const TopPose& p) {

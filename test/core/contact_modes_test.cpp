@@ -83,7 +83,9 @@ TEST(Ball, OnAnInclineRollsIfTanAlphaIsAtMostSevenHalvesMuElseSlides) {
     EXPECT_NEAR(-s.tip_velocity.y(), a * T, 1e-9 * a * T);  // downhill is -y
     EXPECT_NEAR(-s.contact_point.y(), 0.5 * a * T * T, 1e-9 * a * T * T);
     EXPECT_NEAR(s.tip_velocity.x(), 0.0, 1e-12);
-    if (rolls) EXPECT_LE(s.mu, mu * (1.0 + 1e-12));  // the mobilised friction 2/7 tan(alpha) stays within mu_s
+    if (rolls) {
+      EXPECT_LE(s.mu, mu * (1.0 + 1e-12));  // the mobilised friction 2/7 tan(alpha) stays within mu_s
+    }
   }
 }
 

@@ -53,35 +53,32 @@ TEST(Pose, TiltedAxisInFlightPlacesTheComAlongTheNormalisedFigureAxis) {
   EXPECT_NEAR((p.contact_point - Eigen::Vector3d::Zero()).norm(), 0.0, 1e-15);
 }
 
-// pose() is the snapshot's placing fields, bit for bit, without building a sample.
-TEST(Pose, SimulatorPoseEqualsTheSnapshotFields) {
-  Simulator sim(top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 200.0)));
-  sim.advance_to(0.37);
-  const TopPose p = sim.pose();
-  const Snapshot s = sim.snapshot();
+// p holds the placing fields of s, bit for bit.
+void expect_places_as(const TopPose& p, const Snapshot& s) {
   EXPECT_EQ(p.t, s.t);
   EXPECT_EQ(p.alpha, s.alpha);
   EXPECT_EQ(p.tip_center, s.tip_center);
   EXPECT_EQ(p.com, s.com);
   EXPECT_EQ(p.orientation.coeffs(), s.orientation.coeffs());
   EXPECT_EQ(p.contact_point, s.contact_point);
+}
+
+// pose() is the snapshot's placing fields, bit for bit, without building a sample.
+TEST(Pose, SimulatorPoseEqualsTheSnapshotFields) {
+  Simulator sim(top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 200.0)));
+  sim.advance_to(0.37);
+  const TopPose p = sim.pose();
+  expect_places_as(p, sim.snapshot());
   EXPECT_GT(p.contact_point.norm(), 0.0);  // the top has moved: the comparison is not of two defaults
 }
 
-// The pose of a snapshot is the simulator's own pose of that state, bit for bit (the node reads it so when it
-// takes the snapshot anyway).
+// The pose of a snapshot is its placing fields (the node reads it so when it takes the snapshot anyway).
 TEST(Pose, PoseOfASnapshotEqualsTheSimulatorPose) {
   Simulator sim(top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 200.0)));
   for (double t : {0.0, 0.21, 1.3}) {
     sim.advance_to(t);
-    const TopPose a = top_pose(sim.snapshot());
-    const TopPose b = sim.pose();
-    EXPECT_EQ(a.t, b.t);
-    EXPECT_EQ(a.alpha, b.alpha);
-    EXPECT_EQ(a.tip_center, b.tip_center);
-    EXPECT_EQ(a.com, b.com);
-    EXPECT_EQ(a.orientation.coeffs(), b.orientation.coeffs());
-    EXPECT_EQ(a.contact_point, b.contact_point);
+    const Snapshot s = sim.snapshot();
+    expect_places_as(top_pose(s), s);
   }
 }
 
