@@ -18,11 +18,11 @@ NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const 
                  double real_time_factor, double rate, double wall)
     : name_(std::move(name)),
       prefix_(launch_top ? "" : name_ + "/"),
-      sim_(std::make_unique<top_sim::Simulator>(scene)),
+      scene_(std::move(scene)),
+      sim_(std::make_unique<top_sim::Simulator>(scene_)),
       pacer_(real_time_factor, rate, wall, sim_->time()),
       frames_(frames),
-      node_time_(node_time),
-      scene_(std::move(scene)) {}
+      node_time_(node_time) {}
 
 void NodeTop::advance(double wall, double budget, bool paused) {
   const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;

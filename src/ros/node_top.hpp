@@ -65,15 +65,14 @@ class NodeTop {
   TopOutput output;
 
  private:
-  // What every tick reads first, together (the publishing prefetches them for thousands of tops); the scene last.
   std::string name_, prefix_;
+  top_sim::Scene scene_;
   std::unique_ptr<top_sim::Simulator> sim_;
   top_sim::Pacer pacer_;
   Frames frames_;
   double node_time_;
   std::size_t steps_reported_ = 0, mode_switches_ = 0;
   bool fault_reported_ = false, behind_reported_ = false;
-  top_sim::Scene scene_;
 };
 
 // The frames of a spawned top NAME: NAME/<plane>, NAME/<top>, NAME/<contact> under the node's world frame.

@@ -86,32 +86,6 @@ void StateOutput::close(NodeTop& top) {
   markers_.publish(gone);
 }
 
-namespace {
-
-// What publish_top reads of a top, asked for ahead: with thousands of tops nothing of a top is still cached since
-// its physics, and the reads otherwise wait on memory one after the other. First the top's own fields (addresses
-// alone, nothing loaded), two tops later what they point to (the state, the model, the trail's end).
-void prefetch_fields(const NodeTop& top) {
-  const char* first = reinterpret_cast<const char*>(&top.name());  // name, prefix, the simulator's pointer
-  __builtin_prefetch(first);
-  __builtin_prefetch(first + 64);
-  __builtin_prefetch(&top.pacer());
-  __builtin_prefetch(&top.frames());
-  __builtin_prefetch(&top.output);
-  __builtin_prefetch(&top.output.trail);
-}
-
-void prefetch_pointees(const NodeTop& top) {
-  const top_sim::Simulator& sim = top.sim();
-  __builtin_prefetch(&sim.state());
-  __builtin_prefetch(reinterpret_cast<const char*>(&sim.state()) + 64);
-  __builtin_prefetch(&sim.model());
-  const std::vector<Trail::Point>& trail = top.output.trail.points();
-  __builtin_prefetch(trail.data() + trail.size(), 1);
-}
-
-}  // namespace
-
 void StateOutput::publish(TopSet& tops, double wall, bool paused, double requested_factor) {
   TickFlags flags;
   flags.array = states_.getNumSubscribers() > 0;
@@ -120,13 +94,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   markers_watched_ = markers_.getNumSubscribers() > 0;
   refresh_readers(tops);
   states_used_ = tf_used_ = 0;
-  const std::size_t n = tops.size();
-  const TopSet::Tops::iterator top = tops.begin();
-  for (std::size_t i = 0; i < n; ++i) {
-    if (i + 4 < n) prefetch_fields(*top[i + 4]);
-    if (i + 2 < n) prefetch_pointees(*top[i + 2]);
-    publish_top(*top[i], flags);
-  }
+  for (auto& t : tops) publish_top(*t, flags);
   if (flags.array) {
     all_.names.resize(states_used_);
     all_.states.resize(states_used_);
