@@ -116,8 +116,8 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
 
 bool Simulator::in_stiff_layer(const StateVector& y, bool inside) const {
   if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
-  if (!(contact_velocity(model_, in_plane_velocity(y), angular_velocity(y)).norm() < (inside ? 2.0 : 1.0) * layer_width_))
-    return false;
+  const double speed = contact_velocity(model_, in_plane_velocity(y), angular_velocity(y)).norm();
+  if (!(speed < (inside ? 2.0 : 1.0) * layer_width_)) return false;
   // A kink at v_t = 0 needs friction there: mu(0) > 0, or a slip near 1 (no rolling: a point tip, no spin).
   if (layer_kink_at_rest_) return true;
   const ContactKinematics k = contact_kinematics(model_, in_plane_velocity(y), angular_velocity(y));
