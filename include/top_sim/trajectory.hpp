@@ -17,4 +17,10 @@ struct TrajectoryColumn {
 // In CSV order (docs/interfaces.md).
 const std::vector<TrajectoryColumn>& trajectory_columns();
 
+// The sample grid, one definition for top_sim_run and Python: sample k of a trajectory from t0 at `rate` samples per
+// second is at t0 + k / rate (one rounding), for k = 0 .. last_sample_index; the last is at most `duration` after
+// t0 (1e-12 relative slack, so that 1 s at 50 Hz ends on its 51st sample).
+inline double sample_time(double t0, long k, double rate) { return t0 + static_cast<double>(k) / rate; }
+long last_sample_index(double duration, double rate);
+
 }  // namespace top_sim

@@ -1,6 +1,8 @@
 // The trajectory column table: name, unit and value of each sampled quantity.
 #include "top_sim/trajectory.hpp"
 
+#include <cmath>
+
 namespace top_sim {
 
 const std::vector<TrajectoryColumn>& trajectory_columns() {
@@ -39,6 +41,10 @@ const std::vector<TrajectoryColumn>& trajectory_columns() {
       {"energy_residual", "J", [](S s) { return s.energy_balance_residual; }, nullptr},
   };
   return columns;
+}
+
+long last_sample_index(double duration, double rate) {
+  return static_cast<long>(std::floor(duration * rate * (1.0 + 1e-12)));
 }
 
 }  // namespace top_sim

@@ -9,6 +9,7 @@
 #include <iomanip>
 #include <iostream>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
 #include "top_sim/plane.hpp"
@@ -205,10 +206,9 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   const bool sampling = opt.sample_rate > 0.0;
   if (sampling) {
     take_sample();
-    const double dt = 1.0 / opt.sample_rate;
-    for (long k = 1;; ++k) {
-      const double t = t0 + k * dt;
-      if (t > t_end + 1e-9 * dt) break;
+    const long n = last_sample_index(opt.duration, opt.sample_rate);
+    for (long k = 1; k <= n; ++k) {
+      const double t = sample_time(t0, k, opt.sample_rate);
       if (!mark && t >= t_mark) {
         advance_to(t_mark);
         mark = position(sim.state());
@@ -235,35 +235,54 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   return r;
 }
 
-CsvWriter::CsvWriter(std::ostream& os) : os_(os) { buf_.reserve(kBlock + 4096); }
+CsvWriter::CsvWriter(std::ostream& os)
+    : os_(os), row_room_(kField * trajectory_columns().size() + 1), buf_(new char[kBlock + row_room_]) {
+  for (const TrajectoryColumn& c : trajectory_columns())
+    if (std::char_traits<char>::length(c.name) >= kField) throw std::logic_error(std::string("CSV name: ") + c.name);
+}
+
+namespace {
+
+// One field: the text of an enumeration (shorter than kField: checked by the writer's test), or the shortest
+// round-trip number; NaN is "nan" whatever its sign bit (as format_number).
+char* put_field(char* p, const TrajectoryColumn& c, const Snapshot& s) {
+  if (c.text) {
+    for (const char* t = c.text(s); *t; ++t) *p++ = *t;
+    return p;
+  }
+  const double v = c.value(s);
+  if (std::isnan(v)) return std::copy_n("nan", 3, p);
+  return std::to_chars(p, p + 24, v).ptr;
+}
+
+}  // namespace
 
 void CsvWriter::header() {
-  const char* sep = "";
-  for (const TrajectoryColumn& c : trajectory_columns()) buf_.append(std::exchange(sep, ",")).append(c.name);
-  buf_ += '\n';
+  char* p = buf_.get() + used_;
+  for (const TrajectoryColumn& c : trajectory_columns()) {
+    p = std::copy_n(c.name, std::char_traits<char>::length(c.name), p);
+    *p++ = ',';
+  }
+  p[-1] = '\n';
+  used_ = static_cast<std::size_t>(p - buf_.get());
+  if (used_ >= kBlock) flush();
 }
 
 void CsvWriter::row(const Snapshot& s) {
-  char number[32];
-  bool first = true;
+  char* p = buf_.get() + used_;
   for (const TrajectoryColumn& c : trajectory_columns()) {
-    if (!first) buf_ += ',';
-    first = false;
-    if (c.text) {
-      buf_.append(c.text(s));
-      continue;
-    }
-    const auto r = std::to_chars(number, number + sizeof number, c.value(s), std::chars_format::general, 12);
-    buf_.append(number, r.ptr);
+    p = put_field(p, c, s);
+    *p++ = ',';
   }
-  buf_ += '\n';
-  if (buf_.size() >= kBlock) flush();
+  p[-1] = '\n';
+  used_ = static_cast<std::size_t>(p - buf_.get());
+  if (used_ >= kBlock) flush();
 }
 
 void CsvWriter::flush() {
-  if (buf_.empty()) return;
-  os_.write(buf_.data(), static_cast<std::streamsize>(buf_.size()));
-  buf_.clear();
+  if (used_ == 0) return;
+  os_.write(buf_.get(), static_cast<std::streamsize>(used_));
+  used_ = 0;
 }
 
 bool write_text_file(const std::string& tool, const std::string& flag, const std::string& path,

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <functional>
+#include <memory>
 #include <optional>
 #include <ostream>
 #include <string>
@@ -85,8 +86,9 @@ RunResult run(Simulator& sim, const RunOptions& options);
 // CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
 double thread_cpu_seconds();
 
-// The trajectory CSV (docs/interfaces.md): rows formatted into a buffer with std::to_chars (the text of printf's
-// %.12g, as the stream formatting before it) and written a block at a time; flush() before checking the stream.
+// The trajectory CSV (docs/interfaces.md): each number is std::to_chars' shortest text that reads back as the same
+// double (NaN as "nan"), formatted straight into a block buffer written a block at a time; flush() before checking
+// the stream.
 class CsvWriter {
  public:
   explicit CsvWriter(std::ostream& os);
@@ -98,9 +100,12 @@ class CsvWriter {
   void flush();
 
  private:
-  static constexpr std::size_t kBlock = 1 << 16;  // bytes per write
+  static constexpr std::size_t kBlock = 1 << 16;    // bytes per write
+  static constexpr std::size_t kField = 32;         // room for one field: a double's shortest text is <= 24 chars
   std::ostream& os_;
-  std::string buf_;
+  std::size_t row_room_;                            // bytes one row can take: kField per column
+  std::unique_ptr<char[]> buf_;
+  std::size_t used_ = 0;
 };
 
 // The JSON summary of docs/interfaces.md.

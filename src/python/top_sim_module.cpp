@@ -275,10 +275,10 @@ class PySimulator {
   void sample(double duration, double rate, std::vector<double>& values) {
     const auto& columns = trajectory_columns();
     const double t0 = sim_->time();
-    const long n = static_cast<long>(std::floor(duration * rate * (1.0 + 1e-12)));
+    const long n = last_sample_index(duration, rate);
     values.reserve(static_cast<std::size_t>(n + 1) * columns.size());
     for (long k = 0; k <= n; ++k) {
-      if (k > 0) sim_->advance_to(t0 + static_cast<double>(k) / rate);
+      if (k > 0) sim_->advance_to(sample_time(t0, k, rate));
       const Snapshot s = sim_->snapshot();
       for (const TrajectoryColumn& c : columns) values.push_back(c.value(s));
       if (sim_->fault() != ContactFault::none) break;
