@@ -9,6 +9,7 @@
 #include <array>
 #include <limits>
 #include <memory>
+#include <atomic>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -126,6 +127,7 @@ class Simulator {
   std::size_t next_event_ = 0;
   std::vector<Command> pending_;
   mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
+  std::atomic<bool> has_pending_{false};  // pending_ is not empty (set under the lock; read without it)
   EnergyBalance balance_;
   double max_residual_ = 0.0;
   ContactFault fault_ = ContactFault::none;

@@ -128,6 +128,7 @@ void Simulator::reset() {
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     pending_.clear();
+    has_pending_.store(false, std::memory_order_relaxed);
     model_ = scene_.model;
   }
   y_ = initial_state(scene_);
@@ -206,6 +207,7 @@ std::string Simulator::submit(const Command& command) {
   const std::string error = validate(command, model_);
   if (!error.empty()) return error;
   pending_.push_back(command);
+  has_pending_.store(true, std::memory_order_release);
   return "";
 }
 
@@ -244,10 +246,14 @@ void Simulator::reclose_contact() {
 }
 
 void Simulator::apply_pending() {
+  // Most calls find nothing: no lock then (an uncontended lock still costs a cold cache line per top and call).
+  const bool event_due = next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_;
+  if (!event_due && !has_pending_.load(std::memory_order_acquire)) return;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     std::vector<Command> due;
     due.swap(pending_);
+    has_pending_.store(false, std::memory_order_relaxed);
     while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
       due.push_back(scene_.events[next_event_++].command);
     if (due.empty()) return;

@@ -62,14 +62,16 @@ std::vector<std::string> TopSet::names() const {
   return n;
 }
 
-void TopSet::advance(double wall, double budget, bool paused) {
+void TopSet::advance(double wall, double budget, bool paused, const std::function<void(NodeTop&)>& after) {
   const std::size_t n = tops_.size();
   if (n == 0) return;
   first_ %= n;
   const double start = seconds_now();
   for (std::size_t k = 0; k < n; ++k) {
     const double left = std::max(0.0, budget - (seconds_now() - start));
-    tops_[(first_ + k) % n]->advance(wall, left / static_cast<double>(n - k), paused);
+    NodeTop& top = *tops_[(first_ + k) % n];
+    top.advance(wall, left / static_cast<double>(n - k), paused);
+    if (after) after(top);
   }
   first_ = (first_ + 1) % n;
 }

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,7 +30,8 @@ class TopSet {
   // left over the number of tops still to go, so time a cheap top leaves unused goes to the ones after it. The
   // first top of the round rotates each tick, so no top is always last when a costly one eats the budget. A top
   // that gets too little falls behind on its own (its own Pacer drops its debt); the others keep real time.
-  void advance(double wall, double budget, bool paused);
+  // `after` sees each top right after its physics, while its data is still in cache.
+  void advance(double wall, double budget, bool paused, const std::function<void(NodeTop&)>& after = {});
 
  private:
   Tops tops_;

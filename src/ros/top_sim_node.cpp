@@ -177,12 +177,11 @@ class TopSimNode {
   void tick() {
     const double wall = ros::WallTime::now().toSec();
     const double cpu0 = top_sim_ros::thread_cpu_seconds();
-    tops_.advance(wall, tops_.launch_top().pacer().budget(), paused_);
     std::size_t steps = 0;
-    for (auto& t : tops_) {
-      steps += t->take_steps();
-      t->report(params_.real_time_factor, params_.publish_rate, paused_);
-    }
+    tops_.advance(wall, tops_.launch_top().pacer().budget(), paused_, [&](top_sim_ros::NodeTop& t) {
+      steps += t.take_steps();
+      t.report(params_.real_time_factor, params_.publish_rate, paused_);
+    });
     diagnostics_->add_physics(steps, top_sim_ros::thread_cpu_seconds() - cpu0);
     rejections_.flush(wall);
     output_->publish(tops_, wall, paused_, params_.real_time_factor);
