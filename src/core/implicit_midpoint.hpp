@@ -41,9 +41,9 @@ class ImplicitMidpoint {
 
   void jacobian(const Solver& s, const StateVector& y);
   void factor(double h);
-  Vec predict(double t, double h) const;
+  Vec predict(double h) const;
   Outcome newton(const Solver& s, const StateVector& y0, double h, Vec& k);
-  void remember_slope(const Vec& k, double t, double h);
+  void remember_slope(const Vec& k, double h);
   static std::string failure_message(Outcome outcome, double t, double h);
 
   DifferenceSteps difference_steps_;
@@ -53,7 +53,7 @@ class ImplicitMidpoint {
   bool refresh_ = true;      // evaluate J at the next step's start
   double eta_ = 1.0;         // the last step's theta / (1 - theta): the remaining error per increment
   std::array<Vec, 3> slope_{};        // the last steps' K / h, newest first: the rate at their midpoints
-  std::array<double, 3> slope_t_{};   // their midpoint times
+  std::array<double, 3> slope_h_{};   // their steps
   int history_ = 0;
   std::uint64_t iterations_ = 0, jacobians_ = 0;
 };
