@@ -200,3 +200,21 @@ TEST(ImplicitMidpoint, AStepThatCannotConvergeThrowsTheNamedFaultAndKeepsTheStat
     EXPECT_EQ(st->time(), 0.0);
   }
 }
+
+// Through the Simulator: an absurd dt (0.2 s) on the default scene, whose regularised friction is stiff, ends in the
+// numerical fault naming the method and the step; the state stays the finite initial one.
+TEST(ImplicitMidpoint, TheSimulatorReportsANewtonFailureAsANumericalFault) {
+  Scene scene = load_scene(top_sim_test::scene_path("default"));
+  scene.integrator.method = Method::implicit_midpoint;
+  scene.integrator.dt = 0.2;
+  Simulator sim(scene);
+  const StateVector y0 = sim.state();
+  sim.advance_to(1.0);
+  EXPECT_EQ(sim.fault(), ContactFault::numerical);
+  EXPECT_NE(sim.fault_message().find("implicit_midpoint: the Newton iteration failed at t = 0 s with h = 0.2"),
+            std::string::npos)
+      << sim.fault_message();
+  EXPECT_TRUE(all_finite(sim.state()));
+  EXPECT_EQ(sim.time(), 0.0);
+  EXPECT_EQ(std::memcmp(sim.state().data(), y0.data(), sizeof(StateVector)), 0);
+}
