@@ -4,10 +4,11 @@
 // one thread (CPU time, median of --reps), errors against top_sim's own dopri5 at rtol 1e-12; prints the CPU ratio at
 // equal or better contact-point error, and how much of the nutation each run keeps.
 // Error: the largest in-plane distance of the contact point from the reference's over the samples every 10 ms of the
-// 5 s (501 instants; top_sim rk4 and implicit_midpoint: at every step end, where a fixed-step run lands without changing its steps); the
-// error at 5 s alone is printed too. Nutation kept: the peak-to-peak of the figure axis's tilt from the plane normal
-// over the run's last second, divided by the reference's. --check runs the cheap assertions of the ctest smoke test;
-// --softness splits MuJoCo's error into step and soft contact; --mjcf prints the model.
+// 5 s (501 instants; top_sim rk4 and implicit_midpoint: at every step end, where a fixed-step run lands without
+// changing its steps); the error at 5 s alone is printed too. Nutation kept: the peak-to-peak of the figure axis's
+// tilt from the plane normal over the run's last second, divided by the reference's. --check runs the cheap
+// assertions of the ctest smoke test; --softness splits MuJoCo's error into step and soft contact; --mjcf prints the
+// model.
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -42,7 +43,8 @@ const std::vector<double> kRk4Dt = {1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 7e-3, 8e
 // The implicit midpoint rule has |R(iy)| = 1: no stability limit, the nutation kept at every step (its frequency
 // becomes 2 atan(h w / 2) / h: 10 % slower at h w = 1.1, h = 3.4 ms; its phase costs at most twice the nutation's
 // 0.01 mm in the contact point).
-const std::vector<double> kMidpointDt = {1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 8e-3, 1e-2, 1.2e-2, 1.5e-2, 2e-2, 2.5e-2, 3e-2};
+const std::vector<double> kMidpointDt = {1e-3, 2e-3,   3e-3,   4e-3, 5e-3,   6e-3, 8e-3,
+                                         1e-2, 1.2e-2, 1.5e-2, 2e-2, 2.5e-2, 3e-2};
 constexpr double kKeptFrom = kT - 1.0;  // the nutation kept is measured over the last second
 constexpr double kTiltInterval = 1e-4;  // dense-output samples of the tilt: about 190 per 19 ms nutation period
 
@@ -253,13 +255,15 @@ void mujoco_error(Rung& r, peer::MujocoTop& mj, const Reference& ref, Path& p) {
   r.kept = last_second_peak_to_peak(grid(r.setting, kT, kKeptFrom), mj.tilt_run(kT, kKeptFrom)) / ref.tilt_pp_last;
 }
 
-// The sampled run (every 10 ms for dopri5, every step for the fixed-step methods), its kept nutation, and the reference at its samples.
+// The sampled run (every 10 ms for dopri5, every step for the fixed-step methods), its kept nutation, and the
+// reference at its samples.
 void top_sim_error(Rung& r, const Scene& base, const Reference& ref, Path& p, Path& ref_path) {
   const Scene s = configured(base, r.peer, r.setting);
   const Track tr = track(s, sample_times(r.peer, r.setting));
   p = tr.contact;
   ref_path = fixed_step(r.peer) ? track(with_rtol(base, 1e-12), tr.t).contact : ref.path;
-  r.kept = fixed_step(r.peer) ? last_second_peak_to_peak(tr.t, tr.tilt) / ref.tilt_pp_last : kept_dopri5(s, ref.tilt_pp_last);
+  r.kept = fixed_step(r.peer) ? last_second_peak_to_peak(tr.t, tr.tilt) / ref.tilt_pp_last
+                              : kept_dopri5(s, ref.tilt_pp_last);
   top_sim::Simulator sim(s);
   sim.advance_to(kT);
   r.steps = static_cast<long>(sim.stats().steps);
