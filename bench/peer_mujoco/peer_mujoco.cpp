@@ -1,13 +1,14 @@
 // peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]
 // MuJoCo side by side (issue 21 item 5): the frictionless top of config/scenes/frictionless.yaml over a MuJoCo RK4
-// dt ladder, a top_sim dopri5 rtol ladder and a top_sim rk4 dt ladder, timed interleaved in this one thread (CPU time,
-// median of --reps), errors against top_sim's own dopri5 at rtol 1e-12; prints the CPU ratio at equal or better
-// contact-point error, and how much of the nutation each run keeps.
+// dt ladder, a top_sim dopri5 rtol ladder and top_sim rk4 and implicit_midpoint dt ladders, timed interleaved in this
+// one thread (CPU time, median of --reps), errors against top_sim's own dopri5 at rtol 1e-12; prints the CPU ratio at
+// equal or better contact-point error, and how much of the nutation each run keeps.
 // Error: the largest in-plane distance of the contact point from the reference's over the samples every 10 ms of the
-// 5 s (501 instants; top_sim rk4: at every step end, where a fixed-step run lands without changing its steps); the
-// error at 5 s alone is printed too. Nutation kept: the peak-to-peak of the figure axis's tilt from the plane normal
-// over the run's last second, divided by the reference's. --check runs the cheap assertions of the ctest smoke test;
-// --softness splits MuJoCo's error into step and soft contact; --mjcf prints the model.
+// 5 s (501 instants; top_sim rk4 and implicit_midpoint: at every step end, where a fixed-step run lands without
+// changing its steps); the error at 5 s alone is printed too. Nutation kept: the peak-to-peak of the figure axis's
+// tilt from the plane normal over the run's last second, divided by the reference's. --check runs the cheap
+// assertions of the ctest smoke test; --softness splits MuJoCo's error into step and soft contact; --mjcf prints the
+// model.
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -39,10 +40,18 @@ const std::vector<double> kRtol = {1e-2, 5e-3, 3e-3, 2e-3, 1.5e-3, 1e-3, 7e-4, 5
                                    5e-5, 3e-5, 2e-5, 1e-5, 5e-6, 2e-6, 1e-6, 1e-7, 1e-8};
 // rk4's stability limit on the imaginary axis is h w = 2 sqrt(2): h = 8.6 ms for the 328 rad/s nutation (9 ms faults).
 const std::vector<double> kRk4Dt = {1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 7e-3, 8e-3, 8.5e-3, 9e-3};
+// The implicit midpoint rule has |R(iy)| = 1: no stability limit, the nutation kept at every step (its frequency
+// becomes 2 atan(h w / 2) / h: 10 % slower at h w = 1.1, h = 3.4 ms; its phase costs at most twice the nutation's
+// 0.01 mm in the contact point).
+const std::vector<double> kMidpointDt = {1e-3, 2e-3,   3e-3,   4e-3, 5e-3,   6e-3, 8e-3,
+                                         1e-2, 1.2e-2, 1.5e-2, 2e-2, 2.5e-2, 3e-2};
 constexpr double kKeptFrom = kT - 1.0;  // the nutation kept is measured over the last second
 constexpr double kTiltInterval = 1e-4;  // dense-output samples of the tilt: about 190 per 19 ms nutation period
 
-enum class Peer { mujoco, dopri5, rk4 };
+enum class Peer { mujoco, dopri5, rk4, midpoint };
+constexpr int kPeers = 4;
+
+bool fixed_step(Peer p) { return p == Peer::rk4 || p == Peer::midpoint; }
 
 double thread_cpu() {
   timespec ts{};
@@ -64,11 +73,11 @@ Scene with_rtol(Scene s, double rtol) {
   return s;
 }
 
-// dopri5 or rk4 at the rung's setting (rtol or dt).
+// dopri5, rk4 or implicit_midpoint at the rung's setting (rtol or dt).
 Scene configured(const Scene& base, Peer peer, double setting) {
   if (peer == Peer::dopri5) return with_rtol(base, setting);
   Scene s = base;
-  s.integrator.method = top_sim::Method::rk4;
+  s.integrator.method = peer == Peer::rk4 ? top_sim::Method::rk4 : top_sim::Method::implicit_midpoint;
   s.integrator.dt = setting;
   return s;
 }
@@ -83,9 +92,10 @@ std::vector<double> grid(double h, double to, double from = 0.0) {
 }
 
 // Where a top_sim rung is sampled: every kInterval for dopri5 (dense output: the steps do not depend on it), every
-// step for rk4 (a fixed-step run lands on multiples of dt with h = dt: the same steps as one advance to kT).
+// step for rk4 and implicit_midpoint (a fixed-step run lands on multiples of dt with h = dt: the same steps as one
+// advance to kT).
 std::vector<double> sample_times(Peer peer, double setting) {
-  return grid(peer == Peer::rk4 ? setting : kInterval, kT);
+  return grid(fixed_step(peer) ? setting : kInterval, kT);
 }
 
 double tilt(const top_sim::StateVector& y) { return std::acos(std::clamp(top_sim::figure_axis(y).z(), -1.0, 1.0)); }
@@ -200,9 +210,18 @@ struct Rung {
 };
 
 const char* peer_name(Peer p) {
-  return p == Peer::mujoco ? "MuJoCo RK4" : p == Peer::dopri5 ? "top_sim dopri5" : "top_sim rk4";
+  return p == Peer::mujoco   ? "MuJoCo RK4"
+         : p == Peer::dopri5 ? "top_sim dopri5"
+         : p == Peer::rk4    ? "top_sim rk4"
+                             : "top_sim implicit_midpoint";
 }
-const char* csv_name(Peer p) { return p == Peer::mujoco ? "mujoco_rk4" : p == Peer::dopri5 ? "top_sim_dopri5" : "top_sim_rk4"; }
+const char* csv_name(Peer p) {
+  return p == Peer::mujoco   ? "mujoco_rk4"
+         : p == Peer::dopri5 ? "top_sim_dopri5"
+         : p == Peer::rk4    ? "top_sim_rk4"
+                             : "top_sim_implicit_midpoint";
+}
+const char* method_name(Peer p) { return p == Peer::dopri5 ? "dopri5" : p == Peer::rk4 ? "rk4" : "implicit_midpoint"; }
 std::string setting_text(const Rung& r) {
   return std::string(r.peer == Peer::dopri5 ? "rtol " : "dt ") + fmt("%g", r.setting);
 }
@@ -236,18 +255,20 @@ void mujoco_error(Rung& r, peer::MujocoTop& mj, const Reference& ref, Path& p) {
   r.kept = last_second_peak_to_peak(grid(r.setting, kT, kKeptFrom), mj.tilt_run(kT, kKeptFrom)) / ref.tilt_pp_last;
 }
 
-// The sampled run (every 10 ms for dopri5, every step for rk4), its kept nutation, and the reference at its samples.
+// The sampled run (every 10 ms for dopri5, every step for the fixed-step methods), its kept nutation, and the
+// reference at its samples.
 void top_sim_error(Rung& r, const Scene& base, const Reference& ref, Path& p, Path& ref_path) {
   const Scene s = configured(base, r.peer, r.setting);
   const Track tr = track(s, sample_times(r.peer, r.setting));
   p = tr.contact;
-  ref_path = r.peer == Peer::rk4 ? track(with_rtol(base, 1e-12), tr.t).contact : ref.path;
-  r.kept = r.peer == Peer::rk4 ? last_second_peak_to_peak(tr.t, tr.tilt) / ref.tilt_pp_last : kept_dopri5(s, ref.tilt_pp_last);
+  ref_path = fixed_step(r.peer) ? track(with_rtol(base, 1e-12), tr.t).contact : ref.path;
+  r.kept = fixed_step(r.peer) ? last_second_peak_to_peak(tr.t, tr.tilt) / ref.tilt_pp_last
+                              : kept_dopri5(s, ref.tilt_pp_last);
   top_sim::Simulator sim(s);
   sim.advance_to(kT);
   r.steps = static_cast<long>(sim.stats().steps);
   r.switches = static_cast<long>(sim.mode_switch_count());
-  // The timed run without samples must be the sampled run: neither dopri5's nor rk4's steps depend on the samples.
+  // The timed run without samples must be the sampled run: no method's steps depend on the samples.
   if (r.steps != tr.steps || sim.state() != tr.end)
     std::cerr << peer_name(r.peer) << " " << setting_text(r) << ": the run without samples ends elsewhere than the "
               << "sampled run (" << r.steps << " steps against " << tr.steps << ", " << sim.mode_switch_count()
@@ -296,13 +317,14 @@ std::vector<Rung> ladder() {
   for (double dt : kMujocoDt) rungs.push_back(rung(Peer::mujoco, dt));
   for (double rtol : kRtol) rungs.push_back(rung(Peer::dopri5, rtol));
   for (double dt : kRk4Dt) rungs.push_back(rung(Peer::rk4, dt));
+  for (double dt : kMidpointDt) rungs.push_back(rung(Peer::midpoint, dt));
   return rungs;
 }
 
 // Repetition by repetition, MuJoCo and top_sim rungs alternate (one of each ladder in turn), so the machine's load
 // falls on all alike.
 void time_interleaved(std::vector<Rung>& rungs, const Scene& base, peer::MujocoTop& mj, int reps) {
-  std::vector<std::vector<Rung*>> by_peer(3);
+  std::vector<std::vector<Rung*>> by_peer(kPeers);
   for (Rung& r : rungs) by_peer[static_cast<int>(r.peer)].push_back(&r);
   std::vector<Rung*> order;
   for (std::size_t i = 0; i < rungs.size(); ++i)
@@ -316,7 +338,7 @@ void time_interleaved(std::vector<Rung>& rungs, const Scene& base, peer::MujocoT
 }
 
 // The cheapest top_sim rung (median CPU to 5 s without samples) with err_max <= err, of the given method or of
-// either (Peer::mujoco); nullptr if none.
+// any (Peer::mujoco); nullptr if none.
 const Rung* cheapest_at(const std::vector<Rung>& rungs, double err, Peer only) {
   const Rung* best = nullptr;
   for (const Rung& r : rungs)
@@ -355,13 +377,13 @@ std::string ratio_text(const std::vector<double>& a, const std::vector<double>& 
   return buf;
 }
 
-// For each MuJoCo dt, the cheapest top_sim run at equal or better error among `only` (Peer::mujoco: either ladder).
+// For each MuJoCo dt, the cheapest top_sim run at equal or better error among `only` (Peer::mujoco: any ladder).
 void print_ratios(const std::vector<Rung>& rungs, Peer only) {
   std::printf("\n**Cheapest %s at equal or better error**\n\n| MuJoCo dt | its max error [mm] | its CPU [ms] | "
               "its nutation kept | cheapest top_sim at <= that error | its max error [mm] | its CPU [ms] to 5 s, no "
               "samples (with samples) | ratio, no samples: median (min-max) over repetitions | ratio, with samples | "
               "its nutation kept |\n|---|---|---|---|---|---|---|---|---|---|\n",
-              only == Peer::mujoco ? "top_sim run, dopri5 or rk4," : "top_sim dopri5 run");
+              only == Peer::mujoco ? "top_sim run, any ladder," : "top_sim dopri5 run");
   for (const Rung& m : rungs) {
     if (m.peer != Peer::mujoco) continue;
     const Rung* t = std::isfinite(m.err_max) ? cheapest_at(rungs, m.err_max, only) : nullptr;
@@ -371,9 +393,49 @@ void print_ratios(const std::vector<Rung>& rungs, Peer only) {
       continue;
     }
     std::printf("| %g | %.3g | %.3g | %.2g | %s %s | %.3g | %.3g (%.3g) | **%s** | %s | %.2g |\n", m.setting,
-                1e3 * m.err_max, 1e3 * median(m.cpu), m.kept, t->peer == Peer::rk4 ? "rk4" : "dopri5",
+                1e3 * m.err_max, 1e3 * median(m.cpu), m.kept, method_name(t->peer),
                 setting_text(*t).c_str(), 1e3 * t->err_max, 1e3 * median(t->cpu_to_T), 1e3 * median(t->cpu),
                 ratio_text(m.cpu, t->cpu_to_T).c_str(), ratio_text(m.cpu, t->cpu).c_str(), t->kept);
+  }
+}
+
+// The implicit midpoint rule's nutation frequency over the true one: arg R(i h w) / (h w) = 2 atan(h w / 2) / (h w).
+double midpoint_frequency(double dt, double w) { return 2.0 * std::atan(0.5 * dt * w) / (dt * w); }
+
+// The cheapest top_sim rung at <= err with the nutation kept in [0.9, 1.1] and, for midpoint, its frequency at least
+// `min_frequency` of the true w.
+const Rung* cheapest_keeping(const std::vector<Rung>& rungs, double err, double w, double min_frequency) {
+  const Rung* best = nullptr;
+  for (const Rung& r : rungs)
+    if (r.peer != Peer::mujoco && r.err_max <= err && r.kept >= 0.9 && r.kept <= 1.1 &&
+        (r.peer != Peer::midpoint || midpoint_frequency(r.setting, w) >= min_frequency) &&
+        (!best || median(r.cpu_to_T) < median(best->cpu_to_T)))
+      best = &r;
+  return best;
+}
+
+// Issue 21 item 5's target: the cheapest top_sim run, any ladder, at MuJoCo dt 1e-3's error or better with the
+// nutation kept (0.9 to 1.1 of the reference's), and its CPU ratio to that MuJoCo run; then the same with the
+// nutation's frequency also within 10 % (midpoint: h w <= 1.1; its amplitude is kept at any h, its frequency not).
+void print_target(const std::vector<Rung>& rungs, double w) {
+  const auto mj = std::find_if(rungs.begin(), rungs.end(),
+                               [](const Rung& r) { return r.peer == Peer::mujoco && r.setting == 1e-3; });
+  if (mj == rungs.end() || !std::isfinite(mj->err_max)) return;
+  for (double min_frequency : {0.0, 0.9}) {
+    const Rung* best = cheapest_keeping(rungs, mj->err_max, w, min_frequency);
+    std::printf("\n**Target%s** (MuJoCo RK4 dt 1e-3: %.3g mm, %.3g ms; top_sim at <= that error with nutation kept in "
+                "[0.9, 1.1]%s): ", min_frequency > 0.0 ? ", nutation frequency within 10 %" : "", 1e3 * mj->err_max,
+                1e3 * median(mj->cpu), min_frequency > 0.0 ? " and its frequency within 10 %" : "");
+    if (!best) {
+      std::printf("none\n");
+      continue;
+    }
+    std::printf("%s %s, %.3g mm, nutation kept %.3g", method_name(best->peer), setting_text(*best).c_str(),
+                1e3 * best->err_max, best->kept);
+    if (best->peer == Peer::midpoint)
+      std::printf(" at %.2g of its frequency (2 atan(h w / 2) / (h w))", midpoint_frequency(best->setting, w));
+    std::printf(", %.3g ms to 5 s without samples: ratio **%s** (with samples %s)\n", 1e3 * median(best->cpu_to_T),
+                ratio_text(mj->cpu, best->cpu_to_T).c_str(), ratio_text(mj->cpu, best->cpu).c_str());
   }
 }
 
@@ -452,6 +514,19 @@ bool check_rk4_decay(const Scene& scene, double w, double ref_pp) {
   return ok;
 }
 
+// implicit_midpoint at dt 5 ms (h w = 1.6): |R(iy)| = 1 keeps the nutation, and the slow motion is accurate.
+bool check_midpoint(const Scene& scene, double ref_pp) {
+  const double dt = 5e-3;
+  const Track tr = track(configured(scene, Peer::midpoint, dt), grid(dt, kT));
+  const double kept = last_second_peak_to_peak(tr.t, tr.tilt) / ref_pp;
+  const double err = max_distance(tr.contact, track(with_rtol(scene, 1e-12), tr.t).contact);
+  bool ok = expect(std::abs(kept - 1.0) < 0.05, "implicit_midpoint dt 5e-3 keeps " + fmt("%.4f", kept) +
+                                                    " of the nutation (1 within 5 %)");
+  ok &= expect(err < 8e-5, "implicit_midpoint dt 5e-3: max contact-point error " + fmt("%.3g", 1e3 * err) +
+                               " mm at its step ends (< 0.08 mm)");
+  return ok;
+}
+
 // The nutation's frequency against the fast-top formula, rk4's damping against its stability function, dopri5 at a
 // tight rtol keeping the nutation.
 bool check_nutation(const Scene& scene) {
@@ -464,6 +539,7 @@ bool check_nutation(const Scene& scene) {
   ok &= check_rk4_decay(scene, w, ref_pp);
   const double kept = kept_dopri5(with_rtol(scene, 1e-8), ref_pp);
   ok &= expect(std::abs(kept - 1.0) < 0.03, "dopri5 rtol 1e-8 keeps " + fmt("%.4f", kept) + " of it (1 within 3 %)");
+  ok &= check_midpoint(scene, ref_pp);
   return ok;
 }
 
@@ -557,6 +633,7 @@ int bench(const Scene& scene, const Options& opt) {
   print_rungs(rungs, ref);
   print_ratios(rungs, Peer::mujoco);
   print_ratios(rungs, Peer::dopri5);
+  print_target(rungs, ref.nutation_w);
   if (!opt.csv.empty()) write_csv(opt.csv, rungs);
   return 0;
 }

@@ -12,8 +12,9 @@
 namespace top_sim {
 
 // switching: dopri5 while the motion is non-stiff, rosenbrock4 once its steps buy more simulated time per cost
-// (the sleeping regime, where explicit steps are stability-limited).
-enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4, switching };
+// (the sleeping regime, where explicit steps are stability-limited). implicit_midpoint: fixed step, A-stable with
+// |R(iy)| = 1 (an oscillation keeps its amplitude at any step), order 2.
+enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4, switching, implicit_midpoint };
 
 const char* to_string(Method m);
 bool parse_method(const std::string& name, Method& out);

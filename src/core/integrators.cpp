@@ -2,6 +2,8 @@
 // dopri5/rosenbrock4 switch here.
 #include "top_sim/integrators.hpp"
 
+#include "implicit_midpoint.hpp"
+
 #include <algorithm>
 #include <boost/numeric/odeint.hpp>
 #include <boost/numeric/ublas/matrix.hpp>
@@ -23,13 +25,14 @@ const char* to_string(Method m) {
     case Method::dopri5: return "dopri5";
     case Method::rosenbrock4: return "rosenbrock4";
     case Method::switching: return "switching";
+    case Method::implicit_midpoint: return "implicit_midpoint";
   }
   return "?";
 }
 
 bool parse_method(const std::string& name, Method& out) {
   for (Method m : {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::dopri5, Method::rosenbrock4,
-                   Method::switching})
+                   Method::switching, Method::implicit_midpoint})
     if (name == to_string(m)) {
       out = m;
       return true;
@@ -68,7 +71,8 @@ struct FsalSystem {
 
 class FixedStepper : public Stepper {
  public:
-  FixedStepper(Method method, double dt, System system) : method_(method), dt_(dt), system_(std::move(system)) {}
+  FixedStepper(Method method, double dt, System system, DifferenceSteps difference_steps = {})
+      : method_(method), dt_(dt), system_(std::move(system)), midpoint_(std::move(difference_steps)) {}
 
   void reset(const StateVector& y, double t) override {
     y_ = y;
@@ -77,6 +81,7 @@ class FixedStepper : public Stepper {
     t_prev_ = t;
     t_base_ = t;
     n_since_base_ = 0;
+    midpoint_.reset();
   }
 
   void step(double t_limit) override {
@@ -98,6 +103,7 @@ class FixedStepper : public Stepper {
       case Method::euler: euler_.do_step(sys, y_, t_, h); break;
       case Method::rk4: rk4_.do_step(sys, y_, t_, h); break;
       case Method::semi_implicit_euler: semi_implicit_step(sys, h); break;
+      case Method::implicit_midpoint: midpoint_.step(system_, stats.rhs_evaluations, y_, t_, h); break;
       default: throw std::logic_error("FixedStepper: not a fixed-step method");
     }
     normalize_figure_axis(y_);
@@ -146,6 +152,7 @@ class FixedStepper : public Stepper {
   std::uint64_t n_since_base_ = 0;
   odeint::euler<StateVector> euler_;
   odeint::runge_kutta4<StateVector> rk4_;
+  ImplicitMidpoint midpoint_;
 };
 
 // ---- Dormand-Prince 5(4) with dense output ----------------------------------------------------------------
@@ -667,7 +674,9 @@ std::unique_ptr<Stepper> make_plain_stepper(const IntegratorSettings& settings, 
     case Method::euler:
     case Method::semi_implicit_euler:
     case Method::rk4:
-      return std::make_unique<FixedStepper>(settings.method, settings.dt, std::move(system));
+    case Method::implicit_midpoint:
+      return std::make_unique<FixedStepper>(settings.method, settings.dt, std::move(system),
+                                            std::move(difference_steps));
     case Method::dopri5:
       return std::make_unique<Dopri5Stepper>(settings, std::move(system));
     case Method::rosenbrock4:

@@ -75,7 +75,7 @@ double max_error(const StateVector& y, const StateVector& ref) {
   return e;
 }
 
-const std::vector<Method> kFixed = {Method::euler, Method::semi_implicit_euler, Method::rk4};
+const std::vector<Method> kFixed = {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::implicit_midpoint};
 const std::vector<Method> kAdaptive = {Method::dopri5, Method::rosenbrock4, Method::switching};
 
 IntegratorSettings fixed_settings(Method m, double dt) {
@@ -163,6 +163,7 @@ double tolerance_run(Method m, double tol, double t_end, double& steps) {
 TEST(IntegratorOrder, EulerIsFirstOrder) { expect_order(Method::euler, 1.0 / 32, 1.0); }
 TEST(IntegratorOrder, SemiImplicitEulerIsFirstOrder) { expect_order(Method::semi_implicit_euler, 1.0 / 32, 1.0); }
 TEST(IntegratorOrder, Rk4IsFourthOrder) { expect_order(Method::rk4, 1.0 / 8, 4.0); }
+TEST(IntegratorOrder, ImplicitMidpointIsSecondOrder) { expect_order(Method::implicit_midpoint, 1.0 / 16, 2.0); }
 TEST(IntegratorOrder, Dopri5OnFixedStepsIsFifthOrder) { expect_order(Method::dopri5, 1.0 / 32, 5.0); }
 TEST(IntegratorOrder, Rosenbrock4OnFixedStepsIsFourthOrder) { expect_order(Method::rosenbrock4, 1.0 / 8, 4.0); }
 // Fewer than its 200 steps before the first rosenbrock4 probe: the switching method is dopri5 here.
