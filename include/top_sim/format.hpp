@@ -1,19 +1,28 @@
 // Numbers in messages: the shortest text that reads back as the same double (exact, and 1.6 stays "1.6").
 #pragma once
 
+#include <algorithm>
 #include <charconv>
+#include <cstddef>
 #include <cmath>
 #include <optional>
 #include <string>
 
 namespace top_sim {
 
-// A NaN is "nan" whatever its sign bit (to_chars writes "-nan" for some, which reads as a negative number).
+// Room a number's text takes at most (a double's shortest round-trip text is at most 24 characters).
+constexpr std::size_t kNumberChars = 24;
+
+// Writes v's shortest round-trip text at `first` (room for kNumberChars) and returns its end. A NaN is "nan"
+// whatever its sign bit (to_chars writes "-nan" for some, which reads as a negative number).
+inline char* put_number(char* first, double v) {
+  if (std::isnan(v)) return std::copy_n("nan", 3, first);
+  return std::to_chars(first, first + kNumberChars, v).ptr;
+}
+
 inline std::string format_number(double v) {
-  if (std::isnan(v)) return "nan";
-  char buf[32];
-  const auto r = std::to_chars(buf, buf + sizeof buf, v);
-  return std::string(buf, r.ptr);
+  char buf[kNumberChars];
+  return std::string(buf, put_number(buf, v));
 }
 
 // The one form of a range error: "FIELD = VALUE: must be RANGE".

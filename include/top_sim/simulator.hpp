@@ -98,6 +98,7 @@ class Simulator {
   void restart_stepper(bool rebase_energy);
   void apply_now(const Command& c);
   void apply_pending();
+  bool scene_event_due() const;  // the scene's next event is at or before t_
   bool scan_events(double t_end);
   bool scan_flight(double t_end, const StateVector& y1);
   void select_stepper();

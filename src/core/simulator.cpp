@@ -245,17 +245,19 @@ void Simulator::reclose_contact() {
   }
 }
 
+bool Simulator::scene_event_due() const {
+  return next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_;
+}
+
 void Simulator::apply_pending() {
   // Most calls find nothing: no lock then (an uncontended lock still costs a cold cache line per top and call).
-  const bool event_due = next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_;
-  if (!event_due && !has_pending_.load(std::memory_order_acquire)) return;
+  if (!scene_event_due() && !has_pending_.load(std::memory_order_acquire)) return;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
     std::vector<Command> due;
     due.swap(pending_);
     has_pending_.store(false, std::memory_order_relaxed);
-    while (next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_)
-      due.push_back(scene_.events[next_event_++].command);
+    while (scene_event_due()) due.push_back(scene_.events[next_event_++].command);
     if (due.empty()) return;
     for (const Command& c : due) apply_now(c);
   }

@@ -12,6 +12,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/trajectory.hpp"
 
@@ -236,23 +237,21 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
 }
 
 CsvWriter::CsvWriter(std::ostream& os)
-    : os_(os), row_room_(kField * trajectory_columns().size() + 1), buf_(new char[kBlock + row_room_]) {
+    : os_(os), buf_(new char[kBlock + kField * trajectory_columns().size() + 1]) {  // a block and one more row
   for (const TrajectoryColumn& c : trajectory_columns())
     if (std::char_traits<char>::length(c.name) >= kField) throw std::logic_error(std::string("CSV name: ") + c.name);
 }
 
 namespace {
 
-// One field: the text of an enumeration (shorter than kField: checked by the writer's test), or the shortest
-// round-trip number; NaN is "nan" whatever its sign bit (as format_number).
+// One field: the name of an enumeration (at most 13 characters: regime.cpp, contact_modes.cpp), or the number's
+// text (format.hpp).
 char* put_field(char* p, const TrajectoryColumn& c, const Snapshot& s) {
   if (c.text) {
     for (const char* t = c.text(s); *t; ++t) *p++ = *t;
     return p;
   }
-  const double v = c.value(s);
-  if (std::isnan(v)) return std::copy_n("nan", 3, p);
-  return std::to_chars(p, p + 24, v).ptr;
+  return put_number(p, c.value(s));
 }
 
 }  // namespace

@@ -101,10 +101,9 @@ class CsvWriter {
 
  private:
   static constexpr std::size_t kBlock = 1 << 16;    // bytes per write
-  static constexpr std::size_t kField = 32;         // room for one field: a double's shortest text is <= 24 chars
+  static constexpr std::size_t kField = 32;         // room for one field and its comma (a number: kNumberChars)
   std::ostream& os_;
-  std::size_t row_room_;                            // bytes one row can take: kField per column
-  std::unique_ptr<char[]> buf_;
+  std::unique_ptr<char[]> buf_;                     // kBlock and room for one more row
   std::size_t used_ = 0;
 };
 
