@@ -13,8 +13,10 @@ namespace top_sim {
 
 // switching: dopri5 while the motion is non-stiff, rosenbrock4 once its steps buy more simulated time per cost
 // (the sleeping regime, where explicit steps are stability-limited). implicit_midpoint: fixed step, A-stable with
-// |R(iy)| = 1 (an oscillation keeps its amplitude at any step), order 2.
-enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4, switching, implicit_midpoint };
+// |R(iy)| = 1 (an oscillation keeps its amplitude at any step), order 2. fitted_midpoint: implicit midpoint fitted to
+// the fastest oscillation of the Jacobian (the nutation), which it then carries exactly (phase and amplitude) at steps
+// longer than its period; see implicit_midpoint.hpp for where it works.
+enum class Method { euler, semi_implicit_euler, rk4, dopri5, rosenbrock4, switching, implicit_midpoint, fitted_midpoint };
 
 const char* to_string(Method m);
 bool parse_method(const std::string& name, Method& out);
@@ -63,6 +65,11 @@ class Stepper {
 // a regularised friction kink of width v_eps must not be stepped across.
 using DifferenceSteps = std::function<void(const StateVector& y, StateVector& max_step)>;
 
+// The azimuth about the plane normal of a direction that turns with the state's slow rotation and not with its fast
+// one (the top's angular momentum) [rad]: fitted_midpoint carries its Jacobian along it by the model's symmetry about
+// the normal.
+using Azimuth = std::function<double(const StateVector& y)>;
+
 // True where the state lies in a stiff layer that rosenbrock4 must cross, whatever the scene's method (physics.md
 // section 9: slip onset). `inside` says whether the state was in the layer at the last check (for hysteresis).
 using StiffLayer = std::function<bool(const StateVector& y, bool inside)>;
@@ -75,6 +82,7 @@ constexpr double kLayerFirstStep = 1.0e-9;
 // and scales the first-same-as-last f' by 1/|f|: the system must read f only as f_hat, but for f' linear in f. With `in_layer`, steps inside the
 // stiff layer are made by rosenbrock4 (the scene's rtol and atol).
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
-                                      DifferenceSteps difference_steps = {}, StiffLayer in_layer = {});
+                                      DifferenceSteps difference_steps = {}, StiffLayer in_layer = {},
+                                      Azimuth azimuth = {});
 
 }  // namespace top_sim

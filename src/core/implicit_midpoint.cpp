@@ -1,4 +1,5 @@
-// The implicit midpoint step: simplified Newton on K = y1 - y0 with a kept inverse of I - h/2 J.
+// The implicit midpoint step (plain or fitted to the nutation): simplified Newton on K = y1 - y0 with a kept inverse
+// of I - 1/2 hG J.
 #include "implicit_midpoint.hpp"
 
 #include <algorithm>
@@ -59,7 +60,30 @@ ImplicitMidpoint::Vec times(const ImplicitMidpoint::Mat& a, const ImplicitMidpoi
   return y;
 }
 
+// The in-plane pairs that turn with a rotation about the plane normal (z): position, velocity, f_hat, omega.
+constexpr std::size_t kTurning[] = {idx::x, idx::u, idx::f, idx::omega};
+
+// v turned about the normal by the angle whose cosine and sine are c and s.
+ImplicitMidpoint::Vec turned(const ImplicitMidpoint::Vec& v, double c, double s) {
+  ImplicitMidpoint::Vec r = v;
+  for (std::size_t i : kTurning) {
+    r[i] = c * v[i] - s * v[i + 1];
+    r[i + 1] = s * v[i] + c * v[i + 1];
+  }
+  return r;
+}
+
 }  // namespace
+
+// The model is symmetric about the plane normal (gravity's in-plane part is a constant, which J does not see):
+// J(Q y) = Q J(y) Q^T for a turn Q about it. The kept J is used in its own frame, vectors turned into it and back.
+ImplicitMidpoint::Vec ImplicitMidpoint::to_jacobian_frame(const Vec& v) const {
+  return fitted_ ? turned(v, cos_turn_, -sin_turn_) : v;
+}
+
+ImplicitMidpoint::Vec ImplicitMidpoint::from_jacobian_frame(const Vec& v) const {
+  return fitted_ ? turned(v, cos_turn_, sin_turn_) : v;
+}
 
 void ImplicitMidpoint::reset() {
   refresh_ = true;
@@ -86,14 +110,29 @@ void ImplicitMidpoint::jacobian(const Solver& s, const StateVector& y) {
   }
   refresh_ = false;
   inverse_h_ = 0.0;
+  if (!fitted_) return;
+  w2_ = -0.5 * jac_.cwiseProduct(jac_.transpose()).sum();  // -tr(J^2) / 2: the fast pair's +-i w dominate it
+  jac_azimuth_ = azimuth_of_ ? azimuth_of_(y) : 0.0;
 }
 
 // The inverse itself: a solve is then one matrix-vector product (two triangular solves of an LU are sequential).
 void ImplicitMidpoint::factor(double h) {
+  if (fitted_) fit(h);
+  const Mat m = fitted_ ? Mat(Mat::Identity() - 0.5 * hg_ * jac_) : Mat(Mat::Identity() - 0.5 * h * jac_);
   // A singular matrix leaves NaN: the iteration reports a non-finite increment, the step its fault.
-  if (!invert(Mat::Identity() - 0.5 * h * jac_, inverse_))
+  if (!invert(m, inverse_))
     inverse_.setConstant(std::numeric_limits<double>::quiet_NaN());
   inverse_h_ = h;
+}
+
+// h G = h (I + (g - 1) J^4 / w^4), g = tan(h w / 2) / (h w / 2): the midpoint rule's phase 2 atan(g h w / 2) is then
+// h w for the nutation, and G is I to (slow rate / w)^4 for the rest.
+void ImplicitMidpoint::fit(double h) {
+  hg_ = h * Mat::Identity();
+  if (!(w2_ > 0.0 && std::isfinite(w2_))) return;  // no oscillation: the plain rule
+  const Mat j2 = jac_ * jac_;
+  const double half = 0.5 * h * std::sqrt(w2_), g = std::tan(half) / half;
+  hg_.noalias() += (h * (g - 1.0) / (w2_ * w2_)) * (j2 * j2);
 }
 
 // The first guess of K. After a step of the same h: that step's K carried on by the midpoint rule's own linear map
@@ -104,7 +143,8 @@ void ImplicitMidpoint::factor(double h) {
 ImplicitMidpoint::Vec ImplicitMidpoint::predict(double h) const {
   if (!has_last_) return Vec::Zero();
   if (last_h_ != h) return (h / last_h_) * last_k_;
-  return 2.0 * times(inverse_, last_k_) - last_k_;
+  const Vec k = to_jacobian_frame(last_k_);
+  return from_jacobian_frame(2.0 * times(inverse_, k) - k);
 }
 
 // Simplified Newton on K - h f(y0 + K/2) = 0; stops when theta / (1 - theta) times the last increment (Hairer &
@@ -121,7 +161,9 @@ ImplicitMidpoint::Outcome ImplicitMidpoint::newton(const Solver& s, const StateV
     for (std::size_t i = 0; i < idx::size; ++i) z[i] = y0[i] + 0.5 * k[i];
     s.system(z, fz);
     ++s.rhs_count;
-    const Vec dk = times(inverse_, h * as_vec(fz) - k);
+    const Vec dk = fitted_ ? from_jacobian_frame(times(inverse_, times(hg_, to_jacobian_frame(as_vec(fz))) -
+                                                             to_jacobian_frame(k)))
+                           : Vec(times(inverse_, h * as_vec(fz) - k));
     if (!dk.allFinite()) return Outcome::non_finite;
     k += dk;
     const double norm = dk.cwiseAbs().cwiseQuotient(scale).maxCoeff();
@@ -148,6 +190,11 @@ void ImplicitMidpoint::step(const System& system, std::uint64_t& rhs_count, Stat
   for (int attempt = 0; attempt < 3 && !from_zero; ++attempt) {
     const bool refresh = refresh_ || (attempt > 0 && !fresh);
     if (refresh) jacobian(s, y);
+    if (fitted_ && azimuth_of_) {
+      const double turn = azimuth_of_(y) - jac_azimuth_;
+      cos_turn_ = std::cos(turn);
+      sin_turn_ = std::sin(turn);
+    }
     fresh = fresh || refresh;
     if (inverse_h_ != h) factor(h);
     from_zero = attempt > 0 && !refresh;
@@ -165,10 +212,10 @@ void ImplicitMidpoint::step(const System& system, std::uint64_t& rhs_count, Stat
   throw std::runtime_error(failure_message(outcome, t, h));
 }
 
-std::string ImplicitMidpoint::failure_message(Outcome outcome, double t, double h) {
+std::string ImplicitMidpoint::failure_message(Outcome outcome, double t, double h) const {
   std::ostringstream os;
   os.precision(17);
-  os << "implicit_midpoint: the Newton iteration failed at t = " << t << " s with h = " << h << " s ("
+  os << name() << ": the Newton iteration failed at t = " << t << " s with h = " << h << " s ("
      << (outcome == Outcome::non_finite ? "a non-finite rate"
          : outcome == Outcome::diverged ? "it diverged"
                                         : "no convergence in " + std::to_string(kMaxIterations) + " iterations")

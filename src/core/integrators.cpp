@@ -26,13 +26,14 @@ const char* to_string(Method m) {
     case Method::rosenbrock4: return "rosenbrock4";
     case Method::switching: return "switching";
     case Method::implicit_midpoint: return "implicit_midpoint";
+    case Method::fitted_midpoint: return "fitted_midpoint";
   }
   return "?";
 }
 
 bool parse_method(const std::string& name, Method& out) {
   for (Method m : {Method::euler, Method::semi_implicit_euler, Method::rk4, Method::dopri5, Method::rosenbrock4,
-                   Method::switching, Method::implicit_midpoint})
+                   Method::switching, Method::implicit_midpoint, Method::fitted_midpoint})
     if (name == to_string(m)) {
       out = m;
       return true;
@@ -71,8 +72,12 @@ struct FsalSystem {
 
 class FixedStepper : public Stepper {
  public:
-  FixedStepper(Method method, double dt, System system, DifferenceSteps difference_steps = {})
-      : method_(method), dt_(dt), system_(std::move(system)), midpoint_(std::move(difference_steps)) {}
+  FixedStepper(Method method, double dt, System system, DifferenceSteps difference_steps = {}, Azimuth azimuth = {})
+      : method_(method),
+        dt_(dt),
+        system_(std::move(system)),
+        midpoint_(std::move(difference_steps),
+                  method == Method::fitted_midpoint ? std::move(azimuth) : Azimuth{}, method == Method::fitted_midpoint) {}
 
   void reset(const StateVector& y, double t) override {
     y_ = y;
@@ -103,7 +108,8 @@ class FixedStepper : public Stepper {
       case Method::euler: euler_.do_step(sys, y_, t_, h); break;
       case Method::rk4: rk4_.do_step(sys, y_, t_, h); break;
       case Method::semi_implicit_euler: semi_implicit_step(sys, h); break;
-      case Method::implicit_midpoint: midpoint_.step(system_, stats.rhs_evaluations, y_, t_, h); break;
+      case Method::implicit_midpoint:
+      case Method::fitted_midpoint: midpoint_.step(system_, stats.rhs_evaluations, y_, t_, h); break;
       default: throw std::logic_error("FixedStepper: not a fixed-step method");
     }
     normalize_figure_axis(y_);
@@ -669,14 +675,15 @@ class LayeredStepper : public Stepper {
 };
 
 std::unique_ptr<Stepper> make_plain_stepper(const IntegratorSettings& settings, System system,
-                                            DifferenceSteps difference_steps) {
+                                            DifferenceSteps difference_steps, Azimuth azimuth = {}) {
   switch (settings.method) {
     case Method::euler:
     case Method::semi_implicit_euler:
     case Method::rk4:
     case Method::implicit_midpoint:
+    case Method::fitted_midpoint:
       return std::make_unique<FixedStepper>(settings.method, settings.dt, std::move(system),
-                                            std::move(difference_steps));
+                                            std::move(difference_steps), std::move(azimuth));
     case Method::dopri5:
       return std::make_unique<Dopri5Stepper>(settings, std::move(system));
     case Method::rosenbrock4:
@@ -690,13 +697,13 @@ std::unique_ptr<Stepper> make_plain_stepper(const IntegratorSettings& settings, 
 }  // namespace
 
 std::unique_ptr<Stepper> make_stepper(const IntegratorSettings& settings, System system,
-                                      DifferenceSteps difference_steps, StiffLayer in_layer) {
+                                      DifferenceSteps difference_steps, StiffLayer in_layer, Azimuth azimuth) {
   if (!in_layer || settings.method == Method::rosenbrock4)
-    return make_plain_stepper(settings, std::move(system), std::move(difference_steps));
+    return make_plain_stepper(settings, std::move(system), std::move(difference_steps), std::move(azimuth));
   IntegratorSettings stiff = settings;
   stiff.method = Method::rosenbrock4;
   stiff.dt = kLayerFirstStep;
-  return std::make_unique<LayeredStepper>(make_plain_stepper(settings, system, difference_steps),
+  return std::make_unique<LayeredStepper>(make_plain_stepper(settings, system, difference_steps, std::move(azimuth)),
                                           make_plain_stepper(stiff, system, difference_steps), std::move(in_layer));
 }
 

@@ -305,7 +305,7 @@ IntegratorSettings read_integrator(Section& root, const std::string& file) {
   Section g(root.raw("integrator"), file, "integrator");
   IntegratorSettings is;
   const std::string method = g.word("method", "dopri5", {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4",
-                                                         "switching", "implicit_midpoint"});
+                                                         "switching", "implicit_midpoint", "fitted_midpoint"});
   parse_method(method, is.method);
   // Below 1e-12 s a step no longer changes t (double resolution at t ~ 1e4 s): a run that cannot progress.
   is.dt = g.number("dt", is.dt, [](double v) { return v >= kMinStep && v <= 10.0; }, "in [1e-12, 10] [s]");

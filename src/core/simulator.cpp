@@ -1,6 +1,8 @@
 // The Simulator: time, stepper, contact modes and their events, commands, faults (physics.md sections 4, 8, 9).
 #include "top_sim/simulator.hpp"
 
+#include "top_sim/angular_momentum.hpp"
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -110,7 +112,8 @@ Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
       scene_.integrator,
       [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt, &record_); },
       [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
-      [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); });
+      [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); },
+      [this](const StateVector& y) { return angular_momentum_azimuth(model_, y); });
   reset();
 }
 

@@ -60,22 +60,24 @@ TEST(Counters, NoHeapAllocationWhileStepping) {
   }
 }
 
-// implicit_midpoint allocates nothing per step either: its matrices are fixed-size, and its Jacobian refreshes and
-// refactorisations (whenever the Newton contraction slows) reuse them.
+// implicit_midpoint and fitted_midpoint allocate nothing per step either: their matrices are fixed-size, and their
+// Jacobian refreshes and refactorisations (whenever the Newton contraction slows) reuse them.
 TEST(Counters, NoHeapAllocationWhileSteppingImplicitMidpoint) {
-  top_sim::Scene scene = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/frictionless.yaml");
-  scene.integrator.method = top_sim::Method::implicit_midpoint;
-  scene.integrator.dt = 5e-3;
-  top_sim::Simulator sim(scene);
-  ASSERT_TRUE(sim.advance_to(0.1));  // past the first steps
-  const std::uint64_t steps_before = sim.stats().steps;
-  const std::uint64_t before = top_sim_counting::heap_allocations();
-  const bool ok = sim.advance_to(2.0);
-  const std::uint64_t allocations = top_sim_counting::heap_allocations() - before;
-  ASSERT_TRUE(ok);
-  ASSERT_EQ(sim.fault(), top_sim::ContactFault::none) << sim.fault_message();
-  ASSERT_EQ(sim.stats().steps - steps_before, 380u);
-  EXPECT_EQ(allocations, 0u) << allocations << " allocations in 380 steps";
+  for (top_sim::Method method : {top_sim::Method::implicit_midpoint, top_sim::Method::fitted_midpoint}) {
+    top_sim::Scene scene = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/frictionless.yaml");
+    scene.integrator.method = method;
+    scene.integrator.dt = 5e-3;
+    top_sim::Simulator sim(scene);
+    ASSERT_TRUE(sim.advance_to(0.1));  // past the first steps
+    const std::uint64_t steps_before = sim.stats().steps;
+    const std::uint64_t before = top_sim_counting::heap_allocations();
+    const bool ok = sim.advance_to(2.0);
+    const std::uint64_t allocations = top_sim_counting::heap_allocations() - before;
+    ASSERT_TRUE(ok);
+    ASSERT_EQ(sim.fault(), top_sim::ContactFault::none) << sim.fault_message();
+    ASSERT_EQ(sim.stats().steps - steps_before, 380u);
+    EXPECT_EQ(allocations, 0u) << top_sim::to_string(method) << ": " << allocations << " allocations in 380 steps";
+  }
 }
 
 // Advancing builds no sample: with no reader, 1000 advances of 1 ms (10 regime cadence points) make no sample
