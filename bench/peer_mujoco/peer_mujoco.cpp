@@ -1,12 +1,15 @@
 // peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]
 // MuJoCo side by side (issue 21 item 5): the frictionless top of config/scenes/frictionless.yaml over a MuJoCo RK4
-// dt ladder, a top_sim dopri5 rtol ladder and top_sim rk4 and implicit_midpoint dt ladders, timed interleaved in this
+// dt ladder, a top_sim dopri5 rtol ladder and top_sim rk4, implicit_midpoint and fitted_midpoint dt ladders, timed
+// interleaved in this
 // one thread (CPU time, median of --reps), errors against top_sim's own dopri5 at rtol 1e-12; prints the CPU ratio at
 // equal or better contact-point error, and how much of the nutation each run keeps.
 // Error: the largest in-plane distance of the contact point from the reference's over the samples every 10 ms of the
 // 5 s (501 instants; top_sim rk4 and implicit_midpoint: at every step end, where a fixed-step run lands without
 // changing its steps); the error at 5 s alone is printed too. Nutation kept: the peak-to-peak of the figure axis's
-// tilt from the plane normal over the run's last second, divided by the reference's. --check runs the cheap
+// tilt from the plane normal over the run's last second, divided by the reference's; phase error: the largest
+// difference of that tilt from the reference's at the run's samples in the last second, over the same peak-to-peak
+// (about 0 in phase, about 1 out of phase, whatever the frequency). --check runs the cheap
 // assertions of the ctest smoke test; --softness splits MuJoCo's error into step and soft contact; --mjcf prints the
 // model.
 #include <mujoco/mujoco.h>
@@ -24,6 +27,7 @@
 
 #include "mujoco_top.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/nutation.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
@@ -45,13 +49,17 @@ const std::vector<double> kRk4Dt = {1e-3, 2e-3, 3e-3, 4e-3, 5e-3, 6e-3, 7e-3, 8e
 // 0.01 mm in the contact point).
 const std::vector<double> kMidpointDt = {1e-3, 2e-3,   3e-3,   4e-3, 5e-3,   6e-3, 8e-3,
                                          1e-2, 1.2e-2, 1.5e-2, 2e-2, 2.5e-2, 3e-2};
+// fitted_midpoint at k pi / w, w the fast-top nutation frequency: odd k puts the step's midpoint at the nutation's
+// centre, even k samples it at the same phase every step (its resonance).
+constexpr int kFittedHalfPeriods = 7;
+constexpr double kInPhase = 0.5;  // the largest phase error of a run "in phase" with the nutation
 constexpr double kKeptFrom = kT - 1.0;  // the nutation kept is measured over the last second
 constexpr double kTiltInterval = 1e-4;  // dense-output samples of the tilt: about 190 per 19 ms nutation period
 
-enum class Peer { mujoco, dopri5, rk4, midpoint };
-constexpr int kPeers = 4;
+enum class Peer { mujoco, dopri5, rk4, midpoint, fitted };
+constexpr int kPeers = 5;
 
-bool fixed_step(Peer p) { return p == Peer::rk4 || p == Peer::midpoint; }
+bool fixed_step(Peer p) { return p == Peer::rk4 || p == Peer::midpoint || p == Peer::fitted; }
 
 double thread_cpu() {
   timespec ts{};
@@ -73,11 +81,13 @@ Scene with_rtol(Scene s, double rtol) {
   return s;
 }
 
-// dopri5, rk4 or implicit_midpoint at the rung's setting (rtol or dt).
+// dopri5, rk4, implicit_midpoint or fitted_midpoint at the rung's setting (rtol or dt).
 Scene configured(const Scene& base, Peer peer, double setting) {
   if (peer == Peer::dopri5) return with_rtol(base, setting);
   Scene s = base;
-  s.integrator.method = peer == Peer::rk4 ? top_sim::Method::rk4 : top_sim::Method::implicit_midpoint;
+  s.integrator.method = peer == Peer::rk4        ? top_sim::Method::rk4
+                        : peer == Peer::midpoint ? top_sim::Method::implicit_midpoint
+                                                 : top_sim::Method::fitted_midpoint;
   s.integrator.dt = setting;
   return s;
 }
@@ -146,6 +156,21 @@ double last_second_peak_to_peak(const std::vector<double>& t, const std::vector<
   return hi - lo;
 }
 
+// The largest |tilt - the reference's tilt| at the instants t >= kKeptFrom, over the reference's peak-to-peak there:
+// about 0 for a run in phase with the nutation, about 1 for one out of phase.
+double phase_error(const Scene& base, const std::vector<double>& t, const std::vector<double>& tilt, double ref_pp) {
+  std::vector<double> times, run;
+  for (std::size_t i = 0; i < t.size(); ++i)
+    if (t[i] >= kKeptFrom - 1e-12) {
+      times.push_back(t[i]);
+      run.push_back(tilt[i]);
+    }
+  const Track ref = track(with_rtol(base, 1e-12), times, false);
+  double e = 0.0;
+  for (std::size_t i = 0; i < run.size(); ++i) e = std::max(e, std::abs(run[i] - ref.tilt[i]));
+  return e / ref_pp;
+}
+
 double max_distance(const Path& a, const Path& b) {
   double e = 0.0;
   for (std::size_t i = 0; i < std::min(a.size(), b.size()); ++i) e = std::max(e, (a[i] - b[i]).norm());
@@ -188,23 +213,24 @@ Reference reference(const Scene& base) {
   return r;
 }
 
-// The nutation kept by a dopri5 run: its tilt on the dense output every kTiltInterval over the last second (the
-// steps are those of the unsampled run: checked, else said).
-double kept_dopri5(const Scene& s, double ref_tilt_pp) {
+// A dopri5 run's tilt on its dense output every kTiltInterval over the last second (the steps are those of the
+// unsampled run: checked, else said).
+Track dopri5_last_second(const Scene& s) {
   const Track tr = track(s, grid(kTiltInterval, kT, kKeptFrom), false);
   top_sim::Simulator sim(s);
   sim.advance_to(kT);
   if (static_cast<long>(sim.stats().steps) != tr.steps || sim.state() != tr.end)
     std::cerr << "rtol " << s.integrator.rtol << ": the tilt samples changed the run (" << tr.steps << " steps, "
               << sim.stats().steps << " without)\n";
-  return last_second_peak_to_peak(tr.t, tr.tilt) / ref_tilt_pp;
+  return tr;
 }
 
 // One rung of a ladder: its errors once, its CPU times per repetition.
 struct Rung {
   Peer peer = Peer::mujoco;
   double setting = 0.0;  // dt or rtol
-  double err_max = NAN, err_final = NAN, penetration = NAN, kept = NAN;
+  double err_max = NAN, err_final = NAN, penetration = NAN, kept = NAN, phase = NAN;
+  int half_periods = 0;  // fitted_midpoint: dt = half_periods pi / w
   long steps = 0, switches = 0;  // top_sim: steps and contact-mode switches (spurious hops of a loose rtol)
   std::vector<double> cpu, cpu_to_T;  // per repetition [s]: the sampled run; top_sim also without samples
 };
@@ -212,17 +238,22 @@ struct Rung {
 const char* peer_name(Peer p) {
   return p == Peer::mujoco   ? "MuJoCo RK4"
          : p == Peer::dopri5 ? "top_sim dopri5"
-         : p == Peer::rk4    ? "top_sim rk4"
-                             : "top_sim implicit_midpoint";
+         : p == Peer::rk4      ? "top_sim rk4"
+         : p == Peer::midpoint ? "top_sim implicit_midpoint"
+                               : "top_sim fitted_midpoint";
 }
 const char* csv_name(Peer p) {
   return p == Peer::mujoco   ? "mujoco_rk4"
          : p == Peer::dopri5 ? "top_sim_dopri5"
-         : p == Peer::rk4    ? "top_sim_rk4"
-                             : "top_sim_implicit_midpoint";
+         : p == Peer::rk4      ? "top_sim_rk4"
+         : p == Peer::midpoint ? "top_sim_implicit_midpoint"
+                               : "top_sim_fitted_midpoint";
 }
-const char* method_name(Peer p) { return p == Peer::dopri5 ? "dopri5" : p == Peer::rk4 ? "rk4" : "implicit_midpoint"; }
+const char* method_name(Peer p) {
+  return p == Peer::dopri5 ? "dopri5" : p == Peer::rk4 ? "rk4" : p == Peer::midpoint ? "implicit_midpoint" : "fitted_midpoint";
+}
 std::string setting_text(const Rung& r) {
+  if (r.half_periods > 0) return "dt " + fmt("%.4g", r.setting) + " (" + std::to_string(r.half_periods) + " pi / w)";
   return std::string(r.peer == Peer::dopri5 ? "rtol " : "dt ") + fmt("%g", r.setting);
 }
 
@@ -247,12 +278,14 @@ double cpu_of(Fn&& fn, double min_seconds = 0.02) {
   return elapsed / calls;
 }
 
-void mujoco_error(Rung& r, peer::MujocoTop& mj, const Reference& ref, Path& p) {
+void mujoco_error(Rung& r, const Scene& base, peer::MujocoTop& mj, const Reference& ref, Path& p) {
   mj.set_timestep(r.setting);
   p = mj.run(kT, kInterval);
   r.penetration = mj.max_penetration();
   r.steps = std::lround(kT / r.setting);
-  r.kept = last_second_peak_to_peak(grid(r.setting, kT, kKeptFrom), mj.tilt_run(kT, kKeptFrom)) / ref.tilt_pp_last;
+  const std::vector<double> t = grid(r.setting, kT, kKeptFrom), tilt = mj.tilt_run(kT, kKeptFrom);
+  r.kept = last_second_peak_to_peak(t, tilt) / ref.tilt_pp_last;
+  r.phase = phase_error(base, t, tilt, ref.tilt_pp_last);
 }
 
 // The sampled run (every 10 ms for dopri5, every step for the fixed-step methods), its kept nutation, and the
@@ -262,8 +295,9 @@ void top_sim_error(Rung& r, const Scene& base, const Reference& ref, Path& p, Pa
   const Track tr = track(s, sample_times(r.peer, r.setting));
   p = tr.contact;
   ref_path = fixed_step(r.peer) ? track(with_rtol(base, 1e-12), tr.t).contact : ref.path;
-  r.kept = fixed_step(r.peer) ? last_second_peak_to_peak(tr.t, tr.tilt) / ref.tilt_pp_last
-                              : kept_dopri5(s, ref.tilt_pp_last);
+  const Track last = fixed_step(r.peer) ? tr : dopri5_last_second(s);
+  r.kept = last_second_peak_to_peak(last.t, last.tilt) / ref.tilt_pp_last;
+  r.phase = phase_error(base, last.t, last.tilt, ref.tilt_pp_last);
   top_sim::Simulator sim(s);
   sim.advance_to(kT);
   r.steps = static_cast<long>(sim.stats().steps);
@@ -278,7 +312,7 @@ void top_sim_error(Rung& r, const Scene& base, const Reference& ref, Path& p, Pa
 void error_of(Rung& r, const Scene& base, peer::MujocoTop& mj, const Reference& ref) {
   Path p, ref_path = ref.path;
   if (r.peer == Peer::mujoco) {
-    mujoco_error(r, mj, ref, p);
+    mujoco_error(r, base, mj, ref, p);
   } else {
     try {
       top_sim_error(r, base, ref, p, ref_path);
@@ -305,19 +339,22 @@ void time_once(Rung& r, const Scene& base, peer::MujocoTop& mj) {
   r.cpu_to_T.push_back(cpu_of([&] { top_sim_final_run(s); }));
 }
 
-Rung rung(Peer peer, double setting) {
+Rung rung(Peer peer, double setting, int half_periods = 0) {
   Rung r;
   r.peer = peer;
   r.setting = setting;
+  r.half_periods = half_periods;
   return r;
 }
 
-std::vector<Rung> ladder() {
+std::vector<Rung> ladder(const Scene& scene) {
+  const double w = top_sim::fast_top_nutation_frequency(scene.model, top_sim::initial_state(scene));
   std::vector<Rung> rungs;
   for (double dt : kMujocoDt) rungs.push_back(rung(Peer::mujoco, dt));
   for (double rtol : kRtol) rungs.push_back(rung(Peer::dopri5, rtol));
   for (double dt : kRk4Dt) rungs.push_back(rung(Peer::rk4, dt));
   for (double dt : kMidpointDt) rungs.push_back(rung(Peer::midpoint, dt));
+  for (int k = 1; k <= kFittedHalfPeriods; ++k) rungs.push_back(rung(Peer::fitted, k * M_PI / w, k));
   return rungs;
 }
 
@@ -350,17 +387,18 @@ const Rung* cheapest_at(const std::vector<Rung>& rungs, double err, Peer only) {
 
 void print_rungs(const std::vector<Rung>& rungs, const Reference& ref) {
   std::printf("| peer | setting | steps | max error [mm] | error at 5 s [mm] | error / nutation | nutation kept | "
-              "CPU with samples [ms] | CPU to 5 s, no samples [ms] | max penetration [mm] / mode switches |\n"
-              "|---|---|---|---|---|---|---|---|---|---|\n");
+              "phase error | CPU with samples [ms] | CPU to 5 s, no samples [ms] | max penetration [mm] / mode "
+              "switches |\n|---|---|---|---|---|---|---|---|---|---|---|\n");
   for (const Rung& r : rungs) {
     if (!std::isfinite(r.err_max)) {
-      std::printf("| %s | %s | fault (see above) | | | | | | | |\n", peer_name(r.peer), setting_text(r).c_str());
+      std::printf("| %s | %s | fault (see above) | | | | | | | | |\n", peer_name(r.peer), setting_text(r).c_str());
       continue;
     }
     const bool mj = r.peer == Peer::mujoco;
-    std::printf("| %s | %s | %ld | %s | %s | %s | %s | %s | %s | %s |\n", peer_name(r.peer), setting_text(r).c_str(),
-                r.steps, fmt("%.3g", 1e3 * r.err_max).c_str(), fmt("%.3g", 1e3 * r.err_final).c_str(),
-                fmt("%.2g", r.err_max / ref.nutation_pp).c_str(), fmt("%.2g", r.kept).c_str(),
+    std::printf("| %s | %s | %ld | %s | %s | %s | %s | %s | %s | %s | %s |\n", peer_name(r.peer),
+                setting_text(r).c_str(), r.steps, fmt("%.3g", 1e3 * r.err_max).c_str(),
+                fmt("%.3g", 1e3 * r.err_final).c_str(), fmt("%.2g", r.err_max / ref.nutation_pp).c_str(),
+                fmt("%.2g", r.kept).c_str(), fmt("%.2g", r.phase).c_str(),
                 fmt("%.3g", 1e3 * median(r.cpu)).c_str(), mj ? "-" : fmt("%.3g", 1e3 * median(r.cpu_to_T)).c_str(),
                 mj ? fmt("%.3g", 1e3 * r.penetration).c_str() : std::to_string(r.switches).c_str());
   }
@@ -402,13 +440,12 @@ void print_ratios(const std::vector<Rung>& rungs, Peer only) {
 // The implicit midpoint rule's nutation frequency over the true one: arg R(i h w) / (h w) = 2 atan(h w / 2) / (h w).
 double midpoint_frequency(double dt, double w) { return 2.0 * std::atan(0.5 * dt * w) / (dt * w); }
 
-// The cheapest top_sim rung at <= err with the nutation kept in [0.9, 1.1] and, for midpoint, its frequency at least
-// `min_frequency` of the true w.
-const Rung* cheapest_keeping(const std::vector<Rung>& rungs, double err, double w, double min_frequency) {
+// The cheapest top_sim rung at <= err with the nutation kept in [0.9, 1.1] and, if asked, in phase.
+const Rung* cheapest_keeping(const std::vector<Rung>& rungs, double err, bool in_phase) {
   const Rung* best = nullptr;
   for (const Rung& r : rungs)
     if (r.peer != Peer::mujoco && r.err_max <= err && r.kept >= 0.9 && r.kept <= 1.1 &&
-        (r.peer != Peer::midpoint || midpoint_frequency(r.setting, w) >= min_frequency) &&
+        (!in_phase || r.phase <= kInPhase) &&
         (!best || median(r.cpu_to_T) < median(best->cpu_to_T)))
       best = &r;
   return best;
@@ -416,22 +453,22 @@ const Rung* cheapest_keeping(const std::vector<Rung>& rungs, double err, double 
 
 // Issue 21 item 5's target: the cheapest top_sim run, any ladder, at MuJoCo dt 1e-3's error or better with the
 // nutation kept (0.9 to 1.1 of the reference's), and its CPU ratio to that MuJoCo run; then the same with the
-// nutation's frequency also within 10 % (midpoint: h w <= 1.1; its amplitude is kept at any h, its frequency not).
+// nutation also in phase (implicit_midpoint keeps its amplitude at any h, its frequency only at small h w).
 void print_target(const std::vector<Rung>& rungs, double w) {
   const auto mj = std::find_if(rungs.begin(), rungs.end(),
                                [](const Rung& r) { return r.peer == Peer::mujoco && r.setting == 1e-3; });
   if (mj == rungs.end() || !std::isfinite(mj->err_max)) return;
-  for (double min_frequency : {0.0, 0.9}) {
-    const Rung* best = cheapest_keeping(rungs, mj->err_max, w, min_frequency);
+  for (bool in_phase : {false, true}) {
+    const Rung* best = cheapest_keeping(rungs, mj->err_max, in_phase);
     std::printf("\n**Target%s** (MuJoCo RK4 dt 1e-3: %.3g mm, %.3g ms; top_sim at <= that error with nutation kept in "
-                "[0.9, 1.1]%s): ", min_frequency > 0.0 ? ", nutation frequency within 10 %" : "", 1e3 * mj->err_max,
-                1e3 * median(mj->cpu), min_frequency > 0.0 ? " and its frequency within 10 %" : "");
+                "[0.9, 1.1]%s): ", in_phase ? ", nutation in phase" : "", 1e3 * mj->err_max, 1e3 * median(mj->cpu),
+                in_phase ? " and its phase error <= 0.5" : "");
     if (!best) {
       std::printf("none\n");
       continue;
     }
-    std::printf("%s %s, %.3g mm, nutation kept %.3g", method_name(best->peer), setting_text(*best).c_str(),
-                1e3 * best->err_max, best->kept);
+    std::printf("%s %s, %.3g mm, nutation kept %.3g, phase error %.2g", method_name(best->peer),
+                setting_text(*best).c_str(), 1e3 * best->err_max, best->kept, best->phase);
     if (best->peer == Peer::midpoint)
       std::printf(" at %.2g of its frequency (2 atan(h w / 2) / (h w))", midpoint_frequency(best->setting, w));
     std::printf(", %.3g ms to 5 s without samples: ratio **%s** (with samples %s)\n", 1e3 * median(best->cpu_to_T),
@@ -441,12 +478,12 @@ void print_target(const std::vector<Rung>& rungs, double w) {
 
 void write_csv(const std::string& file, const std::vector<Rung>& rungs) {
   std::ofstream csv(file);
-  csv << "peer,setting,steps,mode_switches,err_max_m,err_final_m,penetration_m,nutation_kept,repetition,cpu_s,"
-         "cpu_to_T_s\n";
+  csv << "peer,setting,steps,mode_switches,err_max_m,err_final_m,penetration_m,nutation_kept,phase_error,repetition,"
+         "cpu_s,cpu_to_T_s\n";
   for (const Rung& r : rungs)
     for (std::size_t i = 0; i < r.cpu.size(); ++i)
       csv << csv_name(r.peer) << "," << r.setting << "," << r.steps << "," << r.switches << "," << r.err_max << ","
-          << r.err_final << "," << r.penetration << "," << r.kept << "," << i << "," << r.cpu[i] << ","
+          << r.err_final << "," << r.penetration << "," << r.kept << "," << r.phase << "," << i << "," << r.cpu[i] << ","
           << (r.peer == Peer::mujoco ? NAN : r.cpu_to_T[i]) << "\n";
 }
 
@@ -484,15 +521,6 @@ double com_slide(const Scene& s) {
 // |R(i y)| of classical RK4: R(z) = 1 + z + z^2/2 + z^3/6 + z^4/24.
 double rk4_gain(double y) { return std::abs(std::complex<double>(1.0 - y * y / 2 + y * y * y * y / 24, y - y * y * y / 6)); }
 
-// Fast-top nutation frequency with the centre of mass free to slide: I_f w3 / sqrt(I_d (I_d + m f^2 sin^2 theta))
-// (the tilt rate also lifts the centre of mass; the precession rate does not), at the initial state [rad/s].
-double fast_top_nutation(const Scene& scene) {
-  const top_sim::Top& top = scene.model.top;
-  const top_sim::StateVector y = top_sim::initial_state(scene);
-  const double spin = top_sim::angular_velocity(y).dot(top_sim::figure_axis(y)), st = std::sin(tilt(y));
-  const double lift = top.mass * top.com_offset * top.com_offset * st * st;
-  return top.inertia_axial * spin / std::sqrt(top.inertia_transverse * (top.inertia_transverse + lift));
-}
 
 // The nutation an rk4 run keeps against its stability function: the nutation is a linear mode of frequency w, each
 // step multiplies it by |R(i h w)|, and the last second's peak-to-peak is set by its amplitude at its start. 10 %:
@@ -527,19 +555,41 @@ bool check_midpoint(const Scene& scene, double ref_pp) {
   return ok;
 }
 
+// fitted_midpoint at dt 3 pi / w (1.5 nutation periods): the nutation kept and in phase, the slow motion accurate;
+// implicit_midpoint at that dt keeps the amplitude out of phase.
+bool check_fitted(const Scene& scene, double w, double ref_pp) {
+  const double dt = 3.0 * M_PI / w;
+  const Track tr = track(configured(scene, Peer::fitted, dt), grid(dt, kT));
+  const double kept = last_second_peak_to_peak(tr.t, tr.tilt) / ref_pp, phase = phase_error(scene, tr.t, tr.tilt, ref_pp);
+  const double err = max_distance(tr.contact, track(with_rtol(scene, 1e-12), tr.t).contact);
+  bool ok = expect(std::abs(kept - 1.0) < 0.1 && phase < 0.3, "fitted_midpoint dt 3 pi / w = " + fmt("%.4g", dt) +
+                                                                  " s keeps " + fmt("%.3f", kept) + " of the nutation "
+                                                                  "(1 within 10 %), phase error " + fmt("%.2f", phase) +
+                                                                  " (< 0.3: in phase)");
+  ok &= expect(err < 8e-5, "fitted_midpoint dt 3 pi / w: max contact-point error " + fmt("%.3g", 1e3 * err) +
+                               " mm at its step ends (< 0.08 mm)");
+  const Track plain = track(configured(scene, Peer::midpoint, dt), grid(dt, kT), false);
+  const double plain_phase = phase_error(scene, plain.t, plain.tilt, ref_pp);
+  ok &= expect(plain_phase > kInPhase, "implicit_midpoint at that dt: phase error " + fmt("%.2f", plain_phase) +
+                                           " (> 0.5: out of phase)");
+  return ok;
+}
+
 // The nutation's frequency against the fast-top formula, rk4's damping against its stability function, dopri5 at a
 // tight rtol keeping the nutation.
 bool check_nutation(const Scene& scene) {
   const Track fine = track(with_rtol(scene, 1e-12), grid(kTiltInterval, kT), false);
   const double w = tilt_frequency(fine.t, fine.tilt), ref_pp = last_second_peak_to_peak(fine.t, fine.tilt);
-  const double w_fast = fast_top_nutation(scene);
+  const double w_fast = top_sim::fast_top_nutation_frequency(scene.model, top_sim::initial_state(scene));
   bool ok = expect(std::abs(w / w_fast - 1.0) < 0.02, "the reference's nutation: w = " + fmt("%.1f", w) +
                                                         " rad/s; fast-top formula " + fmt("%.1f", w_fast) +
                                                         " rad/s (within 2 %: the formula leaves out the precession)");
   ok &= check_rk4_decay(scene, w, ref_pp);
-  const double kept = kept_dopri5(with_rtol(scene, 1e-8), ref_pp);
+  const Track last = dopri5_last_second(with_rtol(scene, 1e-8));
+  const double kept = last_second_peak_to_peak(last.t, last.tilt) / ref_pp;
   ok &= expect(std::abs(kept - 1.0) < 0.03, "dopri5 rtol 1e-8 keeps " + fmt("%.4f", kept) + " of it (1 within 3 %)");
   ok &= check_midpoint(scene, ref_pp);
+  ok &= check_fitted(scene, w_fast, ref_pp);
   return ok;
 }
 
@@ -627,7 +677,7 @@ int bench(const Scene& scene, const Options& opt) {
               mj_versionString(), ref.self_error_1e11, ref.self_error_half, 1e3 * ref.nutation_pp, ref.nutation_w,
               ref.tilt_pp_last);
   peer::MujocoTop mj(scene);
-  std::vector<Rung> rungs = ladder();
+  std::vector<Rung> rungs = ladder(scene);
   for (Rung& r : rungs) error_of(r, scene, mj, ref);
   time_interleaved(rungs, scene, mj, opt.reps);
   print_rungs(rungs, ref);
