@@ -72,14 +72,7 @@ TEST(FittedMidpoint, ADrivenOscillatorIsExactAtStepsLongerThanItsPeriod) {
 
 namespace {
 
-Scene frictionless(Method m, double dt) {
-  Scene s = load_scene(top_sim_test::scene_path("frictionless"));
-  s.integrator.method = m;
-  s.integrator.dt = dt;
-  s.integrator.rtol = 1e-11;
-  s.integrator.atol = 1e-13;
-  return s;
-}
+Scene frictionless(Method m, double dt) { return top_sim_test::frictionless_scene(m, dt, 1e-11); }
 
 double tilt(const StateVector& y) { return std::acos(std::min(1.0, figure_axis(y).normalized().z())); }
 

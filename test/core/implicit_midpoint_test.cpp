@@ -50,14 +50,7 @@ std::unique_ptr<Stepper> stepper(Method m, double dt, System system, const State
 // sqrt(gap^2 + (gap_rate / w)^2): 1 for the exact solution from oscillator_start().
 double amplitude(const StateVector& y, double w) { return std::hypot(y[idx::gap], y[idx::gap_rate] / w); }
 
-Scene frictionless(Method m, double dt) {
-  Scene s = load_scene(top_sim_test::scene_path("frictionless"));
-  s.integrator.method = m;
-  s.integrator.dt = dt;
-  s.integrator.rtol = 1e-12;
-  s.integrator.atol = 1e-14;
-  return s;
-}
+Scene frictionless(Method m, double dt) { return top_sim_test::frictionless_scene(m, dt, 1e-12); }
 
 // Largest component difference but the spin phase (unbounded, read by nothing) and W_diss (0 here).
 double state_error(const StateVector& a, const StateVector& b) {

@@ -27,6 +27,17 @@ inline std::string fixture_path(const std::string& name) {
   return config_dir() + "/../test/scenes/" + name + ".yaml";
 }
 
+// The frictionless top of bench/peer_mujoco (config/scenes/frictionless.yaml) with a method, its dt (first step of an
+// adaptive one) and rtol, atol = rtol / 100.
+inline top_sim::Scene frictionless_scene(top_sim::Method method, double dt, double rtol) {
+  top_sim::Scene s = top_sim::load_scene(scene_path("frictionless"));
+  s.integrator.method = method;
+  s.integrator.dt = dt;
+  s.integrator.rtol = rtol;
+  s.integrator.atol = 1e-2 * rtol;
+  return s;
+}
+
 // A scene from YAML text; `source` plays the file name in error messages.
 inline top_sim::Scene scene_from(const std::string& yaml, const std::string& source = "inline_scene.yaml") {
   return top_sim::parse_scene(YAML::Load(yaml), source, config_dir());
