@@ -2,6 +2,7 @@
 
 #include <dirent.h>
 #include <sched.h>
+#include <sys/syscall.h>
 #include <sys/types.h>
 #include <unistd.h>
 
@@ -50,6 +51,15 @@ std::string pin_process_to_cpu(int cpu) {
     if (sched_setaffinity(tid, sizeof(set), &set) != 0 && errno != ESRCH)  // ESRCH: the thread has ended
       return "sched_setaffinity of thread " + std::to_string(tid) + " to CPU " + std::to_string(cpu) + ": " +
              std::strerror(errno);
+  return "";
+}
+
+std::string yield_other_threads() {
+  const auto self = static_cast<pid_t>(syscall(SYS_gettid));
+  sched_param none{};
+  for (pid_t tid : process_threads())
+    if (tid != self && sched_setscheduler(tid, SCHED_BATCH, &none) != 0 && errno != ESRCH)
+      return "sched_setscheduler of thread " + std::to_string(tid) + " to SCHED_BATCH: " + std::strerror(errno);
   return "";
 }
 

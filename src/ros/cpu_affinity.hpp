@@ -17,6 +17,10 @@ int online_cpus();  // CPUs online (sysconf), the range ~cpu_affinity is checked
 // Pins every thread of this process, and so every thread it starts later, to `cpu`: "" or why not.
 std::string pin_process_to_cpu(int cpu);
 
+// Every thread but the caller becomes SCHED_BATCH: a thread it wakes (roscpp's I/O thread, at each publish) no
+// longer preempts it, so on one CPU the tick's messages go out together after the tick. "" or why not.
+std::string yield_other_threads();
+
 // The CPUs the calling thread may run on, as /proc lists them ("1", "0-1", "0,2").
 std::string allowed_cpus();
 

@@ -97,6 +97,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   markers_watched_ = markers_.getNumSubscribers() > 0;
   refresh_readers(tops);
   states_used_ = tf_used_ = 0;
+  own_in_array_.clear();
   for (auto& t : tops) publish_top(*t, flags);
   if (flags.array) {
     all_.names.resize(states_used_);
@@ -105,6 +106,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
     all_.header.frame_id = params_.frames.world;
     states_.publish(all_);
   }
+  for (const auto& [top, i] : own_in_array_) top->output.state.publish(all_.states[i]);
   add_follow_transform(tops);
   if (tf_used_ > 0) {
     tf_msg_.transforms.resize(tf_used_);
@@ -137,7 +139,13 @@ void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
   if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
   top_sim::TopState& msg = flags.array ? next_state(top) : own_;
   fill_state(top, s, stamp, flags, msg);
-  if (subscribed) top.output.state.publish(msg);  // serialised now: the kept message may change next tick
+  if (!subscribed) return;
+  // With the array read, from its entry after the loop: roscpp's I/O thread walks all of the node's publications
+  // (two per top) each time a publish wakes it, so the tick's messages go out back to back.
+  if (flags.array)
+    own_in_array_.emplace_back(&top, states_used_ - 1);
+  else
+    top.output.state.publish(msg);  // serialised now: own_ serves the next top
 }
 
 void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,

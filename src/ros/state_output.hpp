@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -80,6 +81,7 @@ class StateOutput {
   top_sim::TopStateArray all_;
   std::vector<const NodeTop*> named_;  // the top whose name all_.names[i] holds (nullptr: none)
   top_sim::TopState own_;  // a top's own top_state when the array is not read
+  std::vector<std::pair<NodeTop*, std::size_t>> own_in_array_;  // subscribed tops and their entries in all_
   tf2_msgs::TFMessage tf_msg_;
   nav_msgs::Path path_;
   std::size_t states_used_ = 0, tf_used_ = 0;

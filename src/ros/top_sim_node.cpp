@@ -327,6 +327,14 @@ bool pin_from_parameter() {
   return true;
 }
 
+// Pinned, the loop shares its CPU with roscpp's threads: they become SCHED_BATCH, so a publish no longer switches to
+// the I/O thread at once (which then walks all publications once per message); it sends the tick's messages together.
+void yield_when_pinned() {
+  if (top_sim_ros::allowed_cpus().find_first_of(",-") != std::string::npos) return;  // not on one CPU
+  const std::string error = top_sim_ros::yield_other_threads();
+  if (!error.empty()) ROS_WARN("top_sim_node: %s (roscpp's threads keep their priority)", error.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -336,8 +344,9 @@ int main(int argc, char** argv) {
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
   ros::init(argc, argv, "top_sim_node");
   if (!pin_from_parameter()) return 2;
-  TopSimNode node;
+  TopSimNode node;  // roscpp's threads start here
   if (!node.init()) return 2;
+  yield_when_pinned();
   node.run();
   return 0;
 }
