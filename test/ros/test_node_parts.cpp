@@ -287,4 +287,26 @@ TEST(CpuAffinity, PinsEveryThreadOfTheProcess) {
   EXPECT_EQ(late_cpus, std::to_string(cpu));
 }
 
+// The other threads become SCHED_BATCH (woken, they no longer preempt the caller); the caller keeps its policy.
+// The kernel's answer (sched_getscheduler) is the reference.
+TEST(CpuAffinity, OtherThreadsYieldToTheCaller) {
+  std::atomic<pid_t> other_tid{0};
+  std::atomic<bool> done{false};
+  int other_policy = -1;
+  std::thread other([&] {
+    other_tid = this_tid();
+    while (!done) std::this_thread::yield();
+    other_policy = sched_getscheduler(0);
+  });
+  while (other_tid == 0) std::this_thread::yield();
+  const int before = sched_getscheduler(0);
+  const std::string error = top_sim_ros::yield_other_threads();
+  done = true;
+  other.join();
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(other_policy, SCHED_BATCH);
+  EXPECT_EQ(sched_getscheduler(0), before);
+  EXPECT_NE(before, SCHED_BATCH);
+}
+
 }  // namespace
