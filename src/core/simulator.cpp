@@ -270,14 +270,29 @@ void Simulator::apply_pending() {
   restart_stepper(true);
 }
 
+namespace {
+
+// `budget` wall seconds after `start`; never with an infinite budget.
+std::chrono::steady_clock::time_point deadline_after(std::chrono::steady_clock::time_point start, double budget) {
+  using Clock = std::chrono::steady_clock;
+  if (!std::isfinite(budget)) return Clock::time_point::max();
+  return start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::max(budget, 0.0)));
+}
+
+}  // namespace
+
 bool Simulator::advance_to(double t_target, double budget_seconds) {
+  const bool budgeted = std::isfinite(budget_seconds);
+  return advance_to(t_target, budget_seconds, budgeted ? std::chrono::steady_clock::now()
+                                                        : std::chrono::steady_clock::time_point());
+}
+
+bool Simulator::advance_to(double t_target, double budget_seconds, std::chrono::steady_clock::time_point start) {
   using Clock = std::chrono::steady_clock;
   const bool budgeted = std::isfinite(budget_seconds);
-  const Clock::time_point deadline =
-      budgeted ? Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-                                    std::max(budget_seconds, 0.0)))
-               : Clock::time_point::max();
+  const Clock::time_point deadline = deadline_after(start, budget_seconds);
   const double t_entry = t_;
+  bool worked = false;  // a step or an event since `start`: before one, the clock still reads about `start`
   while (fault_ == ContactFault::none && t_ < t_target) {
     apply_pending();
     if (fault_ != ContactFault::none) break;
@@ -290,11 +305,12 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
         const double t_scan = std::min(stepper_->time(), t_stop);
         if (scanned_ < t_scan && !scan_events(t_scan)) {
           if (fault_ != ContactFault::none) break;
+          worked = true;
           continue;  // the state is at the event; the stepper restarted there
         }
         if (t_scan >= t_stop) break;
         // Out of budget after a scanned step or a handled event (steps that all end in events count too).
-        if (budgeted && Clock::now() >= deadline && (stepper_->time() > t_ || t_ > t_entry)) {
+        if (budgeted && (worked ? Clock::now() : start) >= deadline && (stepper_->time() > t_ || t_ > t_entry)) {
           if (stepper_->time() > t_) {
             y_ = stepper_->state();  // a scanned step boundary: the stepper continues from here next time
             t_ = stepper_->time();
@@ -304,6 +320,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds) {
         }
         const double t_before = stepper_->time();
         stepper_->step(t_stop);
+        worked = true;
         if (!all_finite(stepper_->state())) {
           stop_at_step_start("");
           break;

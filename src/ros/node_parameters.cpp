@@ -3,6 +3,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "cpu_affinity.hpp"
 #include "param_yaml.hpp"
 #include "top_sim/format.hpp"
 
@@ -115,6 +116,13 @@ void read_display_parameters(ParamReader& p, NodeParameters& n) {
 
 }  // namespace
 
+int read_cpu_affinity(ParamReader& p) {
+  const int cpu = p.integer("cpu_affinity", kNoCpuAffinity);
+  const std::string error = check_cpu_affinity(p.where("cpu_affinity"), cpu, online_cpus());
+  if (!error.empty()) throw ParameterError(error);
+  return cpu;
+}
+
 NodeParameters read_node_parameters(ParamReader& p) {
   NodeParameters n;
   n.publish_rate = p.number("publish_rate", n.publish_rate);
@@ -137,6 +145,7 @@ NodeParameters read_node_parameters(ParamReader& p) {
   n.lcm_url = p.text("lcm_url", n.lcm_url);
   n.lcm_channel = p.text("lcm_channel", n.lcm_channel);
   n.config_dir = p.text("config_dir", n.config_dir);
+  n.cpu_affinity = read_cpu_affinity(p);
   return n;
 }
 

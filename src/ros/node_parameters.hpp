@@ -63,12 +63,16 @@ struct NodeParameters {
   int grid_cells = 40;
   std::string lcm_url, lcm_channel = "TOP_STATE";
   std::string config_dir;           // where scenes find tops/ and planes/
+  int cpu_affinity = -1;            // the CPU all the node's threads run on; -1 = not pinned (cpu_affinity.hpp)
 };
 
 constexpr double kMaxPublishRate = 10000.0;
 
 // "NAME = VALUE: must be RANGE".
 std::string range_error(const std::string& name, double value, const std::string& range);
+
+// ~cpu_affinity: -1 (the default) or a CPU online; throws ParameterError. Read on its own too, before roscpp starts.
+int read_cpu_affinity(ParamReader& params);
 
 // The node's own parameters; throws ParameterError.
 NodeParameters read_node_parameters(ParamReader& params);

@@ -24,13 +24,13 @@ NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const 
       frames_(frames),
       node_time_(node_time) {}
 
-void NodeTop::advance(double wall, double budget, bool paused) {
+void NodeTop::advance(double wall, double budget, bool paused, std::chrono::steady_clock::time_point start) {
   const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;
   if (!running) {
     sim_->advance_to(sim_->time());  // applies pending commands without moving time
   } else {
     const top_sim::Pacer::Tick t = pacer_.plan(wall, sim_->time());
-    sim_->advance_to(t.target, budget);  // returns within about the budget, at t.target or short of it
+    sim_->advance_to(t.target, budget, start);  // returns within about the budget, at t.target or short of it
   }
   mode_switches_ += sim_->take_mode_switches().size();  // drained: the core would hold up to 100000 until reset
   pacer_.record(wall, sim_->time(), running);

@@ -3,6 +3,7 @@
 // behind alone instead of slowing the others.
 #pragma once
 
+#include <chrono>
 #include <cstddef>
 #include <memory>
 #include <string>
@@ -40,8 +41,10 @@ class NodeTop {
   NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const Frames& frames, double node_time,
           double real_time_factor, double rate, double wall);
 
-  // One tick: the Pacer's target for `wall`, reached within about `budget` wall seconds (or short of it).
-  void advance(double wall, double budget, bool paused);
+  // One tick: the Pacer's target for `wall`, reached within about `budget` wall seconds from `start` (a steady
+  // clock reading just taken), or short of it.
+  void advance(double wall, double budget, bool paused,
+               std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
   void reset(double wall);                          // to the scene's initial state; time keeps running forward
   void reanchor(double wall, bool clear_window);    // after pause, resume, a new factor
   // Logs a new fault or a change of the behind state once (spawned tops' lines are throttled node-wide).

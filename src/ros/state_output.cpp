@@ -1,5 +1,6 @@
 #include "state_output.hpp"
 
+#include <algorithm>
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -46,6 +47,7 @@ void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
   out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
                                         subscription_changes_);
   out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_);
+  out.trail.reserve(static_cast<std::size_t>(params_.path_length));
   ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
 }
 
@@ -80,6 +82,7 @@ void StateOutput::add_markers(const NodeTop& top, const top_sim::Snapshot& s, co
 }
 
 void StateOutput::close(NodeTop& top) {
+  std::fill(named_.begin(), named_.end(), nullptr);  // a top spawned later may get the killed one's address
   visualization_msgs::MarkerArray gone;
   add_markers(top, top.sim().snapshot(), stamp(top), gone);
   for (auto& m : gone.markers) m.action = visualization_msgs::Marker::DELETE;
@@ -94,6 +97,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   markers_watched_ = markers_.getNumSubscribers() > 0;
   refresh_readers(tops);
   states_used_ = tf_used_ = 0;
+  own_in_array_.clear();
   for (auto& t : tops) publish_top(*t, flags);
   if (flags.array) {
     all_.names.resize(states_used_);
@@ -102,6 +106,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
     all_.header.frame_id = params_.frames.world;
     states_.publish(all_);
   }
+  for (const auto& [top, i] : own_in_array_) top->output.state.publish(all_.states[i]);
   add_follow_transform(tops);
   if (tf_used_ > 0) {
     tf_msg_.transforms.resize(tf_used_);
@@ -132,9 +137,15 @@ void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
   add_transforms(top, pose, stamp);
   if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused);
   if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
-  top_sim::TopState& msg = flags.array ? next_state(top.name()) : own_;
+  top_sim::TopState& msg = flags.array ? next_state(top) : own_;
   fill_state(top, s, stamp, flags, msg);
-  if (subscribed) top.output.state.publish(msg);  // serialised now: the kept message may change next tick
+  if (!subscribed) return;
+  // With the array read, from its entry after the loop: roscpp's I/O thread walks all of the node's publications
+  // (two per top) each time a publish wakes it, so the tick's messages go out back to back.
+  if (flags.array)
+    own_in_array_.emplace_back(&top, states_used_ - 1);
+  else
+    top.output.state.publish(msg);  // serialised now: own_ serves the next top
 }
 
 void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
@@ -145,13 +156,18 @@ void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros
   msg.paused = flags.paused;
 }
 
-// The next entry of the array, reused from the last tick when there is one (its strings keep their storage).
-top_sim::TopState& StateOutput::next_state(const std::string& name) {
+// The next entry of the array, reused from the last tick when there is one (its strings keep their storage); its
+// name is copied only when another top had the slot (the order changes only when a top is added, killed or skipped).
+top_sim::TopState& StateOutput::next_state(const NodeTop& top) {
   if (states_used_ == all_.states.size()) {
     all_.states.emplace_back();
     all_.names.emplace_back();
+    named_.push_back(nullptr);
   }
-  all_.names[states_used_] = name;
+  if (named_[states_used_] != &top) {
+    all_.names[states_used_] = top.name();
+    named_[states_used_] = &top;
+  }
   return all_.states[states_used_++];
 }
 

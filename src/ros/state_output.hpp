@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -53,7 +54,7 @@ class StateOutput {
   void publish_top(NodeTop& top, const TickFlags& flags);
   void fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp, const TickFlags& flags,
                   top_sim::TopState& msg) const;
-  top_sim::TopState& next_state(const std::string& name);
+  top_sim::TopState& next_state(const NodeTop& top);
   geometry_msgs::TransformStamped& next_transform();
   void add_transforms(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp);
   void publish_clock(const NodeTop& launch_top);
@@ -78,7 +79,9 @@ class StateOutput {
   unsigned changes_seen_ = 0;
   // The tick's messages, kept across ticks: the first `states_used_` / `tf_used_` entries are this tick's.
   top_sim::TopStateArray all_;
+  std::vector<const NodeTop*> named_;  // the top whose name all_.names[i] holds (nullptr: none)
   top_sim::TopState own_;  // a top's own top_state when the array is not read
+  std::vector<std::pair<NodeTop*, std::size_t>> own_in_array_;  // subscribed tops and their entries in all_
   tf2_msgs::TFMessage tf_msg_;
   nav_msgs::Path path_;
   std::size_t states_used_ = 0, tf_used_ = 0;

@@ -16,10 +16,6 @@ bool is_base_name(const std::string& name) {
   return std::all_of(name.begin(), name.end(), [&](char c) { return letter(c) || digit(c) || c == '_'; });
 }
 
-double seconds_now() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
-
 }  // namespace
 
 std::string TopSet::check_new_name(const std::string& name) const {
@@ -66,11 +62,13 @@ void TopSet::advance(double wall, double budget, bool paused, const std::functio
   const std::size_t n = tops_.size();
   if (n == 0) return;
   first_ %= n;
-  const double start = seconds_now();
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
   for (std::size_t k = 0; k < n; ++k) {
-    const double left = std::max(0.0, budget - (seconds_now() - start));
+    const Clock::time_point now = Clock::now();  // the one clock read for this top's share and its physics
+    const double left = std::max(0.0, budget - std::chrono::duration<double>(now - start).count());
     NodeTop& top = *tops_[(first_ + k) % n];
-    top.advance(wall, left / static_cast<double>(n - k), paused);
+    top.advance(wall, left / static_cast<double>(n - k), paused, now);
     if (after) after(top);
   }
   first_ = (first_ + 1) % n;

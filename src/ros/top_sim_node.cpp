@@ -14,6 +14,7 @@
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
 
+#include "cpu_affinity.hpp"
 #include "node_diagnostics.hpp"
 #include "node_parameters.hpp"
 #include "node_reconfigure.hpp"
@@ -303,6 +304,37 @@ class TopSimNode {
   bool paused_ = false;
 };
 
+// ~cpu_affinity, applied before roscpp starts its threads (at the first NodeHandle) so that they all inherit it;
+// false (after a fatal log) when it is bad or cannot be applied.
+bool pin_from_parameter() {
+  const std::string ns = ros::this_node::getName();  // the private namespace
+  try {
+    XmlRpc::XmlRpcValue tree;
+    ros::param::get(ns, tree);
+    top_sim_ros::ParamReader params(tree, ns);
+    const int cpu = top_sim_ros::read_cpu_affinity(params);
+    if (cpu == top_sim_ros::kNoCpuAffinity) return true;
+    const std::string error = top_sim_ros::pin_process_to_cpu(cpu);
+    if (!error.empty()) {
+      ROS_FATAL("top_sim_node: %s/cpu_affinity = %d: %s", ns.c_str(), cpu, error.c_str());
+      return false;
+    }
+    ROS_INFO("top_sim_node: all threads on CPU %d (~cpu_affinity)", cpu);
+  } catch (const std::exception& e) {
+    ROS_FATAL("top_sim_node: bad parameter: %s", e.what());
+    return false;
+  }
+  return true;
+}
+
+// Pinned, the loop shares its CPU with roscpp's threads: they become SCHED_BATCH, so a publish no longer switches to
+// the I/O thread at once (which then walks all publications once per message); it sends the tick's messages together.
+void yield_when_pinned() {
+  if (top_sim_ros::allowed_cpus().find_first_of(",-") != std::string::npos) return;  // not on one CPU
+  const std::string error = top_sim_ros::yield_other_threads();
+  if (!error.empty()) ROS_WARN("top_sim_node: %s (roscpp's threads keep their priority)", error.c_str());
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -311,8 +343,10 @@ int main(int argc, char** argv) {
   mallopt(M_MMAP_THRESHOLD, 16 << 20);
   mallopt(M_TRIM_THRESHOLD, 64 << 20);
   ros::init(argc, argv, "top_sim_node");
-  TopSimNode node;
+  if (!pin_from_parameter()) return 2;
+  TopSimNode node;  // roscpp's threads start here
   if (!node.init()) return 2;
+  yield_when_pinned();
   node.run();
   return 0;
 }

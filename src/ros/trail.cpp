@@ -1,15 +1,43 @@
 #include "trail.hpp"
 
+#include <sys/mman.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdint>
 
 namespace top_sim_ros {
 
+namespace {
+
+// Asks the kernel to map the whole pages inside [begin, end) now; a kernel without MADV_POPULATE_WRITE (before
+// Linux 5.14) refuses and the pages are faulted in as the trail fills, as before.
+void populate(const void* begin, const void* end) {
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(begin) + page - 1) / page * page;
+  const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(end) / page * page;
+#ifdef MADV_POPULATE_WRITE
+  if (last > first) (void)madvise(reinterpret_cast<void*>(first), last - first, MADV_POPULATE_WRITE);
+#else
+  (void)first;
+  (void)last;
+#endif
+}
+
+}  // namespace
+
+// Room for the most the trail holds (up to kReserveMost), reserved at once: growing by doubling copied a trail of
+// thousands of points into fresh pages several times in its first seconds; a huge path_length reserves no more.
+void Trail::reserve(std::size_t length) {
+  constexpr std::size_t kReserveMost = 8192;
+  if (points_.capacity() > 0) return;
+  points_.reserve(std::min(length + 1, kReserveMost));
+  populate(points_.data(), points_.data() + points_.capacity());
+}
+
 void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolution, std::size_t length) {
   if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
-  // Room for the most the trail holds (up to kReserveMost), reserved at once: growing by doubling copied a trail of
-  // thousands of points into fresh pages several times in its first seconds; a huge path_length reserves no more.
-  constexpr std::size_t kReserveMost = 8192;
-  if (points_.capacity() == 0) points_.reserve(std::min(length + 1, kReserveMost));
+  reserve(length);  // a trail that was not reserved at its top's spawn
   points_.push_back({stamp, p});
   newest_ = p;
   if (points_.size() > length) thin();

@@ -1,10 +1,21 @@
 // Unit tests of the node's parts that need no master: the parameter reader (scene sources, strict types, unknown
-// keys), the top set (names, the sharing of a tick's budget) and the contact-point trail.
+// keys), the top set (names, the sharing of a tick's budget), the contact-point trail and ~cpu_affinity.
 #include <gtest/gtest.h>
 
-#include <chrono>
-#include <string>
+#include <sched.h>
+#include <sys/mman.h>
+#include <sys/syscall.h>
+#include <unistd.h>
 
+#include <atomic>
+#include <chrono>
+#include <cstdint>
+#include <fstream>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "cpu_affinity.hpp"
 #include "node_parameters.hpp"
 #include "top_set.hpp"
 #include "trail.hpp"
@@ -185,6 +196,117 @@ TEST(Trail, StaysWithinItsLengthKeepsItsStartAndItsStorage) {
   }
   EXPECT_EQ(trail.points().front().stamp, ros::Time(1.0));
   EXPECT_EQ(trail.points().back().stamp, ros::Time(1000.0));
+}
+
+// A trail reserved at its top's spawn holds its path_length points in storage whose pages are already mapped
+// (mincore: resident), so the ticks that fill it take no page faults; adding keeps that storage.
+TEST(Trail, ReservedAtSpawnWithItsPagesMapped) {
+  top_sim_ros::Trail trail;
+  const std::size_t length = 5000;
+  trail.reserve(length);
+  ASSERT_GE(trail.points().capacity(), length + 1);
+  const top_sim_ros::Trail::Point* storage = trail.points().data();
+  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
+  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(storage) + page - 1) / page * page;
+  const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(storage + trail.points().capacity()) / page * page;
+  ASSERT_GT(last, first);
+  std::vector<unsigned char> resident((last - first) / page);
+  ASSERT_EQ(mincore(reinterpret_cast<void*>(first), last - first, resident.data()), 0);
+  std::size_t mapped = 0;
+  for (unsigned char r : resident) mapped += r & 1u;
+  EXPECT_EQ(mapped, resident.size());
+  for (int i = 0; i < 100; ++i) trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, length);
+  EXPECT_EQ(trail.points().data(), storage);
+}
+
+// -1 (not pinned) or a CPU online; anything else names the parameter, its value and the range.
+TEST(NodeParameters, CpuAffinityIsMinusOneOrACpuOnline) {
+  const int cpus = top_sim_ros::online_cpus();
+  auto read = [](XmlRpc::XmlRpcValue v) {
+    XmlRpc::XmlRpcValue tree;
+    tree["cpu_affinity"] = v;
+    ParamReader p(tree, "/top_sim");
+    return top_sim_ros::read_node_parameters(p).cpu_affinity;
+  };
+  XmlRpc::XmlRpcValue none;
+  none["publish_rate"] = 100;
+  ParamReader p(none, "/top_sim");
+  EXPECT_EQ(top_sim_ros::read_node_parameters(p).cpu_affinity, -1);
+  EXPECT_EQ(read(XmlRpc::XmlRpcValue(cpus - 1)), cpus - 1);
+  EXPECT_EQ(read(XmlRpc::XmlRpcValue(0)), 0);
+  const std::string range = "[0, " + std::to_string(cpus - 1) + "]";
+  for (int bad : {cpus, -2, 4096}) {
+    const std::string m = message_of([&] { read(XmlRpc::XmlRpcValue(bad)); });
+    EXPECT_NE(m.find("/top_sim/cpu_affinity"), std::string::npos) << m;
+    EXPECT_NE(m.find(std::to_string(bad)), std::string::npos) << m;
+    EXPECT_NE(m.find(range), std::string::npos) << m;
+  }
+  const std::string m = message_of([&] { read(XmlRpc::XmlRpcValue(std::string("1"))); });
+  EXPECT_NE(m.find("/top_sim/cpu_affinity = '1': must be an integer"), std::string::npos) << m;
+}
+
+// The kernel's own account of a thread's CPUs (the independent reference for the masks set here).
+std::string proc_cpus(pid_t tid) {
+  std::ifstream in("/proc/self/task/" + std::to_string(tid) + "/status");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("Cpus_allowed_list:", 0) == 0) return line.substr(line.find_first_not_of(" \t", 18));
+  return "?";
+}
+
+pid_t this_tid() { return static_cast<pid_t>(syscall(SYS_gettid)); }
+
+// A thread that runs before the pinning is pinned with the main thread, and a thread started after inherits it.
+TEST(CpuAffinity, PinsEveryThreadOfTheProcess) {
+  EXPECT_EQ(top_sim_ros::allowed_cpus(), proc_cpus(this_tid()));
+  cpu_set_t before;
+  ASSERT_EQ(sched_getaffinity(0, sizeof(before), &before), 0);
+  int cpu = -1;
+  for (int c = 0; c < CPU_SETSIZE; ++c)
+    if (CPU_ISSET(c, &before)) cpu = c;  // the last CPU this test may use
+  ASSERT_GE(cpu, 0);
+  std::atomic<pid_t> early_tid{0};
+  std::atomic<bool> pinned{false};
+  std::string early_cpus, late_cpus;
+  std::thread early([&] {
+    early_tid = this_tid();
+    while (!pinned) std::this_thread::yield();
+    early_cpus = proc_cpus(this_tid());
+  });
+  while (early_tid == 0) std::this_thread::yield();
+  const std::string error = top_sim_ros::pin_process_to_cpu(cpu);
+  pinned = true;
+  early.join();
+  std::thread late([&] { late_cpus = proc_cpus(this_tid()); });
+  late.join();
+  const std::string main_cpus = proc_cpus(this_tid());
+  ASSERT_EQ(sched_setaffinity(0, sizeof(before), &before), 0);  // the other tests run where they did
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(main_cpus, std::to_string(cpu));
+  EXPECT_EQ(early_cpus, std::to_string(cpu));
+  EXPECT_EQ(late_cpus, std::to_string(cpu));
+}
+
+// The other threads become SCHED_BATCH (woken, they no longer preempt the caller); the caller keeps its policy.
+// The kernel's answer (sched_getscheduler) is the reference.
+TEST(CpuAffinity, OtherThreadsYieldToTheCaller) {
+  std::atomic<pid_t> other_tid{0};
+  std::atomic<bool> done{false};
+  int other_policy = -1;
+  std::thread other([&] {
+    other_tid = this_tid();
+    while (!done) std::this_thread::yield();
+    other_policy = sched_getscheduler(0);
+  });
+  while (other_tid == 0) std::this_thread::yield();
+  const int before = sched_getscheduler(0);
+  const std::string error = top_sim_ros::yield_other_threads();
+  done = true;
+  other.join();
+  EXPECT_EQ(error, "");
+  EXPECT_EQ(other_policy, SCHED_BATCH);
+  EXPECT_EQ(sched_getscheduler(0), before);
+  EXPECT_NE(before, SCHED_BATCH);
 }
 
 }  // namespace

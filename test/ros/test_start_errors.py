@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """top_sim_node refuses at start what top_sim_run refuses, with exit status 2 and a message naming the key, and
-scripts/top_sim_launch passes that status on (roslaunch exits 0). Each case starts its own node process."""
+scripts/top_sim_launch passes that status on (roslaunch exits 0); ~cpu_affinity, checked and applied before
+roscpp's threads start. Each case starts its own node process."""
 import os
 import subprocess
 import sys
@@ -104,6 +105,35 @@ class StartErrors(unittest.TestCase):
             sub.unregister()
         self.assertIn('msg', first, 'no TopState from the node')
         self.assertAlmostEqual(first['msg'].spin, 300.0, delta=1.0)
+
+    def test_cpu_affinity_out_of_range_is_refused(self):
+        self.assert_refused('start_cpu_bad', {'scene_file': DEFAULT_SCENE, 'cpu_affinity': 4096},
+                            '/start_cpu_bad/cpu_affinity = 4096', 'a CPU in [0, %d]' % (os.cpu_count() - 1))
+
+    def test_cpu_affinity_pins_every_thread_of_the_node(self):
+        # The kernel's account of each thread of the running node (roscpp's included) is the reference.
+        cpu = os.cpu_count() - 1
+        rospy.set_param('/start_cpu/scene_file', DEFAULT_SCENE)
+        rospy.set_param('/start_cpu/cpu_affinity', cpu)
+        first = {}
+        sub = rospy.Subscriber('/start_cpu/top_state', TopState, lambda m: first.setdefault('msg', m))
+        proc = subprocess.Popen([node_binary(), '__name:=start_cpu'])
+        try:
+            deadline = rospy.Time.now() + rospy.Duration(30.0)
+            while 'msg' not in first and rospy.Time.now() < deadline and proc.poll() is None:
+                rospy.sleep(0.05)
+            tasks = '/proc/%d/task' % proc.pid
+            allowed = {}
+            for tid in os.listdir(tasks):
+                with open(os.path.join(tasks, tid, 'status')) as f:
+                    allowed[tid] = [l.split()[1] for l in f if l.startswith('Cpus_allowed_list:')][0]
+        finally:
+            proc.terminate()
+            proc.wait(timeout=30.0)
+            sub.unregister()
+        self.assertIn('msg', first, 'no TopState from the node')
+        self.assertGreater(len(allowed), 2, allowed)  # the loop and roscpp's threads
+        self.assertEqual(set(allowed.values()), {str(cpu)}, allowed)
 
     def test_launch_wrapper_returns_the_node_s_status(self):
         path = scene_file('top: aluminium\ntop: steel\nfriction: pmma\n')
