@@ -13,7 +13,8 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
                       [--node LABEL=BIN ...] [--json FILE]
 
-A configuration is TOPS:RATE[:notf]. Figures are noisy on a shared 2-core machine: the load average is recorded,
+A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
+labelled "NODE cpuN"). Figures are noisy on a shared 2-core machine: the load average is recorded,
 and --repeat N runs the configurations N times in turn (round-robin, so load drifts hit all alike) and the table
 gives each one's medians. --node LABEL=BIN runs another build's top_sim_node (with the libraries next to it, e.g. a
 copy of an earlier devel/lib); given more than once (LABEL= alone: the package's node), the builds take turns within
@@ -92,12 +93,13 @@ class Diagnostics(object):
                 self.values = {kv.key: kv.value for kv in st.values}
 
 
-def set_parameters(env, tops, rate, tf):
+def set_parameters(env, tops, rate, tf, cpu=None):
     import rospy
     scene = os.path.join(nh.REPO, 'config', 'scenes', 'default.yaml')
     rospy.set_param(NODE, {
         'scene_file': scene, 'config_dir': os.path.join(nh.REPO, 'config'), 'publish_rate': float(rate),
-        'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)}})
+        'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)},
+        'cpu_affinity': -1 if cpu is None else cpu})
 
 
 def node_command(env, node):
@@ -141,11 +143,11 @@ def wait_for_all_tops(rospy, tops, timeout):
         time.sleep(0.5)
 
 
-def measure(args, env, tops, rate, tf, index, node=('package', '')):
+def measure(args, env, tops, rate, tf, index, node=('package', ''), cpu=None):
     import rospy
     import top_sim.msg as top_sim_msg
     log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
-    set_parameters(env, tops, rate, tf)
+    set_parameters(env, tops, rate, tf, cpu)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600, node=node[1])
     subs = []
@@ -172,7 +174,8 @@ def measure(args, env, tops, rate, tf, index, node=('package', '')):
         states_hz = states.rate(t0, t1)
         d = diag.values
         return {
-            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0], 'run': index,
+            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if cpu is None else ' cpu%d' % cpu),
+            'run': index,
             'startup_s': round(startup, 2),
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
@@ -189,6 +192,21 @@ def measure(args, env, tops, rate, tf, index, node=('package', '')):
         for sub in subs:
             sub.unregister()
         nh.stop_group(proc)
+
+
+def parse_config(text):
+    """TOPS:RATE[:notf][:cpuN] -> (tops, rate, tf, cpu or None)."""
+    parts = text.split(':')
+    tf, cpu = True, None
+    for option in parts[2:]:
+        if option == 'notf':
+            tf = False
+        elif option.startswith('cpu') and option[3:].isdigit():
+            cpu = int(option[3:])
+        else:
+            sys.exit("node_scale.py: configuration '%s': option '%s' is not allowed (notf or cpuN, N a CPU)"
+                     % (text, option))
+    return int(parts[0]), float(parts[1]), tf, cpu
 
 
 def parse_args():
@@ -216,10 +234,9 @@ def main():
         nodes = [tuple(n.split('=', 1)) if '=' in n else (n, n) for n in args.node] or [('package', '')]
         for run in range(args.repeat):
             for c in args.configs.split(','):
-                parts = c.split(':')
-                tops, rate, tf = int(parts[0]), float(parts[1]), not (len(parts) > 2 and parts[2] == 'notf')
+                tops, rate, tf, cpu = parse_config(c)
                 for node in nodes:
-                    r = measure(args, env, tops, rate, tf, run, node)
+                    r = measure(args, env, tops, rate, tf, run, node, cpu)
                     print(json.dumps(r), flush=True)
                     results.append(r)
     finally:

@@ -111,7 +111,8 @@ if [ "$NODE" = 1 ]; then
   set +u; source "$TOP_SIM_WS/devel/setup.bash"; set -u
   { echo "### Many tops per node (bench/node_scale.py)"; echo
     stamp "15 s per configuration after 5 s of warm-up"; echo
-    /usr/bin/python3 "$ROOT/bench/node_scale.py" --configs 1000:200,1000:200:notf,1000:50 --seconds 15 --warmup 5 \
+    /usr/bin/python3 "$ROOT/bench/node_scale.py" --seconds 15 --warmup 5 \
+      --configs "1000:200,1000:200:cpu$(( $(nproc) - 1 )),1000:200:notf,1000:50" \
       --json "$DATA/node_scale.json" | sed -n '/^|/p'; echo; } > "$GEN/60_node_scale.md"
 fi
 
