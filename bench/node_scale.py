@@ -143,11 +143,11 @@ def wait_for_all_tops(rospy, tops, timeout):
         time.sleep(0.5)
 
 
-def measure(args, env, tops, rate, tf, index, node=('package', ''), cpu=None):
+def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None):
     import rospy
     import top_sim.msg as top_sim_msg
     log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
-    set_parameters(env, tops, rate, tf, cpu)
+    set_parameters(env, tops, rate, tf, pin_cpu)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600, node=node[1])
     subs = []
@@ -174,7 +174,7 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), cpu=None):
         states_hz = states.rate(t0, t1)
         d = diag.values
         return {
-            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if cpu is None else ' cpu%d' % cpu),
+            'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if pin_cpu is None else ' cpu%d' % pin_cpu),
             'run': index,
             'startup_s': round(startup, 2),
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
