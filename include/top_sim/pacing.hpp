@@ -79,7 +79,8 @@ class Pacer {
   double factor_, rate_;
   PacingOptions options_;
   double anchor_wall_, anchor_sim_;
-  std::deque<std::pair<double, double>> window_;  // (wall, sim)
+  static constexpr double kWindowPoints = 16.0;  // points of the achieved-factor window per window length
+  std::deque<std::pair<double, double>> window_;  // (wall, sim), at least window / kWindowPoints apart
   double achieved_ = 0.0;
   bool behind_ = false;
   std::uint64_t drops_ = 0;

@@ -37,7 +37,9 @@ struct SampleAnalysis {
   double energy = 0.0;  // mechanical energy E [J]
 };
 
-SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y);
+// `stationary`: the model's stationary_geometry(), solved once per model change.
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
+                              const StationaryGeometry& stationary);
 
 class Simulator {
  public:
@@ -146,7 +148,8 @@ class Simulator {
   std::uint64_t cadence_k_ = 0;
   Regime cadence_regime_ = Regime::nutating;
   std::array<double, kRegimeCount> regime_seconds_{};
-  StationaryState model_stationary_;  // solved at reset and commands: its existence and unstable root (no spin)
+  StationaryGeometry stationary_;  // solved at reset and commands (no spin): the cadence reads its existence and
+                                  // unstable root, a sample adds omega* and u* at its spin
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_

@@ -39,6 +39,16 @@ struct StationaryState {
 // Stable sleeping state for the model's alpha and friction, at shell spin omega* (signed).
 StationaryState stationary_state(const Model& model, double spin);
 
+// What no spin changes of the sleeping state (f_hat*, s*, the unstable root, or why none exists), solved once per
+// model: a sample at a new spin then pays only omega* and u*, with the same bits as stationary_state(model, spin).
+struct StationaryGeometry {
+  StationaryState state;                                // omega*, u*, phi* still zero
+  double sliding_ratio = 0.0;                           // v_d / v_h = tan(phi+), tan(phi+ / 2) = s*
+  Eigen::Vector2d downhill = Eigen::Vector2d::Zero();  // unit vector in the plane; zero on a level plane
+};
+StationaryGeometry stationary_geometry(const Model& model);
+StationaryState stationary_state(const Model& model, const StationaryGeometry& geometry, double spin);
+
 // The sleeping state at another root `slip` of mu(s) = tan(alpha) (e.g. slip_unstable, or any s with the plane
 // at alpha = atan(mu(s))): the same f_hat* and omega*, the sliding speed and phi* of that slip. The caller
 // chooses a root: the friction balance is not checked (slip_unstable stays -1).

@@ -84,17 +84,22 @@ bool stable_branch(const FrictionLaw& law, double tan_alpha, double& s_stable, d
   return true;
 }
 
-// The velocity u* at st.slip: rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+)
-// downhill, tan(phi+/2) = s*.
-void set_sleeping_velocity(const Model& model, StationaryState& st) {
-  const double R = model.top.tip_radius;
+double sliding_ratio(double slip) { return std::tan(2.0 * std::atan(slip)); }
+
+Eigen::Vector2d downhill_direction(const Model& model) {
   const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
+  const Eigen::Vector2d downhill(g_hat.x(), g_hat.y());
+  return downhill.norm() > 0.0 ? Eigen::Vector2d(downhill.normalized()) : Eigen::Vector2d::Zero();
+}
+
+// The velocity u* at st.omega: rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+)
+// downhill, tan(phi+/2) = s* (sliding_ratio).
+void set_sleeping_velocity(const Model& model, double sliding_ratio, const Eigen::Vector2d& down_dir,
+                           StationaryState& st) {
+  const double R = model.top.tip_radius;
   const Eigen::Vector3d rolling = R * Eigen::Vector3d(st.omega.y(), -st.omega.x(), 0.0);
   st.rolling_speed = rolling.norm();
-  const double phi_plus = 2.0 * std::atan(st.slip);
-  st.sliding_speed = st.rolling_speed * std::tan(phi_plus);
-  const Eigen::Vector2d downhill(g_hat.x(), g_hat.y());
-  const Eigen::Vector2d down_dir = downhill.norm() > 0.0 ? Eigen::Vector2d(downhill.normalized()) : Eigen::Vector2d::Zero();
+  st.sliding_speed = st.rolling_speed * sliding_ratio;
   st.velocity = Eigen::Vector2d(rolling.x(), rolling.y()) + st.sliding_speed * down_dir;
   st.phi_defined = st.rolling_speed > 0.0;
   if (st.phi_defined) {
@@ -109,8 +114,8 @@ void set_sleeping_velocity(const Model& model, StationaryState& st) {
 
 namespace {
 
-// The geometry of section 5 (f_hat*, omega*); false (with the reason) when f <= 0 or R sin(alpha) > f.
-bool sleeping_geometry(const Model& model, double spin, StationaryState& st) {
+// The geometry of section 5 (f_hat*); false (with the reason) when f <= 0 or R sin(alpha) > f.
+bool sleeping_geometry(const Model& model, StationaryState& st) {
   const double R = model.top.tip_radius;
   const double f = model.top.com_offset;
   const double alpha = model.plane.inclination;
@@ -131,16 +136,15 @@ bool sleeping_geometry(const Model& model, double spin, StationaryState& st) {
   const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
   const double f_g = -(R / f) * std::cos(alpha) - std::sqrt(1.0 - std::pow(R * std::sin(alpha) / f, 2));
   st.f_hat = (-(R / f) * Eigen::Vector3d::UnitZ() + f_g * g_hat).normalized();
-  st.omega = spin * st.f_hat;
   return true;
 }
 
 }  // namespace
 
-StationaryState stationary_state(const Model& model, double spin) {
-  count(work_counters().stationary_solves);
-  StationaryState st;
-  if (!sleeping_geometry(model, spin, st)) return st;
+StationaryGeometry stationary_geometry(const Model& model) {
+  StationaryGeometry g;
+  StationaryState& st = g.state;
+  if (!sleeping_geometry(model, st)) return g;
   const double alpha = model.plane.inclination;
   if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
     std::ostringstream why;
@@ -149,20 +153,34 @@ StationaryState stationary_state(const Model& model, double spin) {
         << " rad): the top slides downhill";
     st.reason = why.str();
     st.f_hat = Eigen::Vector3d::UnitZ();
-    st.omega.setZero();
-    return st;
+    return g;
   }
   st.exists = true;
-  set_sleeping_velocity(model, st);
+  g.sliding_ratio = sliding_ratio(st.slip);
+  g.downhill = downhill_direction(model);
+  return g;
+}
+
+StationaryState stationary_state(const Model& model, const StationaryGeometry& geometry, double spin) {
+  count(work_counters().stationary_solves);
+  StationaryState st = geometry.state;
+  if (!st.exists) return st;
+  st.omega = spin * st.f_hat;
+  set_sleeping_velocity(model, geometry.sliding_ratio, geometry.downhill, st);
   return st;
+}
+
+StationaryState stationary_state(const Model& model, double spin) {
+  return stationary_state(model, stationary_geometry(model), spin);
 }
 
 StationaryState stationary_state_on_root(const Model& model, double spin, double slip) {
   StationaryState st;
-  if (!sleeping_geometry(model, spin, st)) return st;
+  if (!sleeping_geometry(model, st)) return st;
   st.exists = true;
   st.slip = slip;
-  set_sleeping_velocity(model, st);
+  st.omega = spin * st.f_hat;
+  set_sleeping_velocity(model, sliding_ratio(slip), downhill_direction(model), st);
   return st;
 }
 

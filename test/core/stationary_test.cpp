@@ -8,6 +8,7 @@
 #include "test_util.hpp"
 #include "top_sim/contact.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace {
@@ -245,6 +246,39 @@ TEST(StationarySolver, ZeroTipRadiusHasNoDirectionOfTravel) {
   EXPECT_EQ(st.rolling_speed, 0.0);
   EXPECT_NE(st.reason.find("R = 0"), std::string::npos) << st.reason;
   EXPECT_TRUE(std::isfinite(st.phi) && st.f_hat.allFinite() && st.velocity.allFinite());
+}
+
+// The simulator keeps the spin-free part of the sleeping state per model (stationary_geometry): a sample must read
+// the plane it is on, after a command and after a reset, in the same bits as a fresh solve at the sample's spin.
+TEST(StationaryGeometry, ASampleReadsTheSleepingStateOfThePlaneItIsOn) {
+  Simulator sim(load_scene(top_sim_test::scene_path("default")));
+  auto fresh = [&sim] {
+    const Snapshot s = sim.snapshot();
+    return stationary_state(sim.model(), s.spin);
+  };
+  sim.advance_to(0.01);
+  const double slip_01 = sim.stationary().slip;
+  EXPECT_EQ(sim.stationary().phi, fresh().phi);
+  EXPECT_EQ(sim.stationary().velocity, fresh().velocity);
+  Command steeper;
+  steeper.inclination = 0.2;
+  ASSERT_EQ(sim.submit(steeper), "");
+  sim.advance_to(0.02);
+  EXPECT_EQ(sim.model().plane.inclination, 0.2);
+  EXPECT_EQ(sim.stationary().phi, fresh().phi);
+  EXPECT_EQ(sim.stationary().slip, fresh().slip);
+  EXPECT_GT(sim.stationary().slip, slip_01);  // a steeper plane needs more slip for mu(s*) = tan(alpha)
+  Command beyond;  // above alpha_c of PMMA: no sleeping state, with the reason
+  beyond.inclination = 0.6;
+  ASSERT_EQ(sim.submit(beyond), "");
+  sim.advance_to(0.03);
+  EXPECT_FALSE(sim.stationary().exists);
+  EXPECT_EQ(sim.stationary().reason, fresh().reason);
+  EXPECT_NE(sim.stationary().reason.find("slides downhill"), std::string::npos) << sim.stationary().reason;
+  sim.reset();
+  EXPECT_EQ(sim.model().plane.inclination, 0.1);
+  EXPECT_TRUE(sim.stationary().exists);
+  EXPECT_EQ(sim.stationary().phi, fresh().phi);
 }
 
 }  // namespace
