@@ -14,7 +14,7 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
                       [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
-labelled "NODE cpuN"). Figures are noisy on a shared 2-core machine: the load average is recorded,
+labelled "NODE cpuN"; the harness and its subscribers then keep off CPU N). Figures are noisy on a shared 2-core machine: the load average is recorded,
 and --repeat N runs the configurations N times in turn (round-robin, so load drifts hit all alike) and the table
 gives each one's medians. --node LABEL=BIN runs another build's top_sim_node (with the libraries next to it, e.g. a
 copy of an earlier devel/lib); given more than once (LABEL= alone: the package's node), the builds take turns within
@@ -143,9 +143,24 @@ def wait_for_all_tops(rospy, tops, timeout):
         time.sleep(0.5)
 
 
+ALL_CPUS = os.sched_getaffinity(0)
+
+
+def keep_off_cpu(cpu):
+    """Every thread of this harness (its subscribers) off `cpu`, or back on all CPUs with None: the node pinned
+    there then has the CPU to itself, as a deployment that pins it would give it."""
+    want = ALL_CPUS - {cpu} if cpu is not None and len(ALL_CPUS - {cpu}) > 0 else ALL_CPUS
+    for tid in os.listdir('/proc/self/task'):
+        try:
+            os.sched_setaffinity(int(tid), want)
+        except OSError:  # a thread that has just ended
+            pass
+
+
 def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None):
     import rospy
     import top_sim.msg as top_sim_msg
+    keep_off_cpu(pin_cpu)
     log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
     set_parameters(env, tops, rate, tf, pin_cpu)
     t_start = time.perf_counter()

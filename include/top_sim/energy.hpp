@@ -20,6 +20,8 @@ struct EnergyBalance {
   void rebase(const Model& model, const StateVector& y);
   // |E + W_diss - reference| / scale
   double residual(const Model& model, const StateVector& y) const;
+  // The same from an energy already evaluated at y (a sample's): mechanical_energy is not evaluated twice.
+  double residual(double energy, const StateVector& y) const;
 };
 
 }  // namespace top_sim

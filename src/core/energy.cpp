@@ -42,7 +42,11 @@ void EnergyBalance::rebase(const Model& model, const StateVector& y) {
 }
 
 double EnergyBalance::residual(const Model& model, const StateVector& y) const {
-  return std::abs(mechanical_energy(model, y) + y[idx::w_diss] - reference) / scale;
+  return residual(mechanical_energy(model, y), y);
+}
+
+double EnergyBalance::residual(double energy, const StateVector& y) const {
+  return std::abs(energy + y[idx::w_diss] - reference) / scale;
 }
 
 }  // namespace top_sim

@@ -650,7 +650,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.regime = regime;
   s.energy = analysis.energy;
   s.dissipated_work = y[idx::w_diss];
-  s.energy_balance_residual = balance.residual(model, y);
+  s.energy_balance_residual = balance.residual(analysis.energy, y);  // the analysis' energy is y's
   return s;
 }
 
