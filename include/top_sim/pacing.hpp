@@ -19,6 +19,7 @@
 
 #include <cstdint>
 #include <deque>
+#include <limits>
 #include <utility>
 
 namespace top_sim {
@@ -75,14 +76,22 @@ class Pacer {
 
  private:
   void drop_debt(double wall, double sim, double target);
+  void read_window_ends();  // after every change of window_
+
+  static constexpr double kWindowPoints = 16.0;  // points of the achieved-factor window per window length
+  struct WindowEnds {  // what a tick reads of window_, copied out of it when it changes
+    double oldest_wall = 0.0, oldest_sim = 0.0;
+    double newest_wall = 0.0;
+    double second_wall = std::numeric_limits<double>::infinity();  // the point after the oldest; none: infinity
+  };
 
   double factor_, rate_;
   PacingOptions options_;
   double anchor_wall_, anchor_sim_;
-  static constexpr double kWindowPoints = 16.0;  // points of the achieved-factor window per window length
-  std::deque<std::pair<double, double>> window_;  // (wall, sim), at least window / kWindowPoints apart
+  WindowEnds ends_;  // next to the anchor that plan() has just read: a tick touches no other memory of the Pacer
   double achieved_ = 0.0;
   bool behind_ = false;
+  std::deque<std::pair<double, double>> window_;  // (wall, sim), at least window / kWindowPoints apart
   std::uint64_t drops_ = 0;
   double dropped_sim_ = 0.0;
 };
