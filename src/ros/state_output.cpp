@@ -1,7 +1,6 @@
 #include "state_output.hpp"
 
 #include <algorithm>
-#include <iterator>
 #include <vector>
 
 #include <geometry_msgs/TransformStamped.h>
@@ -99,10 +98,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   refresh_readers(tops);
   states_used_ = tf_used_ = 0;
   own_in_array_.clear();
-  for (auto t = tops.begin(); t != tops.end(); ++t) {
-    if (std::next(t) != tops.end()) (*std::next(t))->output.trail.prefetch_next();  // ready when its turn comes
-    publish_top(**t, flags);
-  }
+  for (auto& t : tops) publish_top(*t, flags);
   if (flags.array) {
     all_.names.resize(states_used_);
     all_.states.resize(states_used_);

@@ -29,9 +29,6 @@ class Trail {
   // Points older than `seconds` before the newest go (before each publication).
   void trim(double seconds);
   void clear() { points_.clear(); }
-  // Asks for the cache line the next add() writes: with a thousand trails none stays cached, and the write waited
-  // for memory (5 % of the node at 1000 tops x 200 Hz). A hint only: an address past the storage is not read.
-  void prefetch_next() const { __builtin_prefetch(points_.data() + points_.size(), 1); }
   const std::vector<Point>& points() const { return points_; }
   // The poses of ~path (frame `plane_frame`, identity orientation); the header is the caller's.
   void to_path(const std::string& plane_frame, nav_msgs::Path& out) const;
