@@ -39,6 +39,10 @@ void Trail::add(const Eigen::Vector3d& p, const ros::Time& stamp, double resolut
   if (!points_.empty() && resolution > 0.0 && (p - newest_).norm() < resolution) return;
   reserve(length);  // a trail that was not reserved at its top's spawn
   points_.push_back({stamp, p});
+  // The line after the one just written, asked for now: the next adds write there, and with a thousand trails a
+  // line first written then comes from memory (Trail::add was 5 % of the node at 1000 tops x 200 Hz). A hint: an
+  // address past the storage is not read.
+  __builtin_prefetch(points_.data() + points_.size() + 64 / sizeof(Point), 1);
   newest_ = p;
   if (points_.size() > length) thin();
 }
