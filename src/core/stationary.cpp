@@ -84,7 +84,7 @@ bool stable_branch(const FrictionLaw& law, double tan_alpha, double& s_stable, d
   return true;
 }
 
-double sliding_ratio(double slip) { return std::tan(2.0 * std::atan(slip)); }
+double sliding_ratio_at(double slip) { return std::tan(2.0 * std::atan(slip)); }  // tan(phi+), tan(phi+/2) = s
 
 Eigen::Vector2d downhill_direction(const Model& model) {
   const Eigen::Vector3d g_hat = model.plane.g_plane.normalized();
@@ -93,13 +93,13 @@ Eigen::Vector2d downhill_direction(const Model& model) {
 }
 
 // The velocity u* at st.omega: rolling part R omega x n along sign(omega) h; sliding part v_h tan(phi+)
-// downhill, tan(phi+/2) = s* (sliding_ratio).
-void set_sleeping_velocity(const Model& model, double sliding_ratio, const Eigen::Vector2d& down_dir,
+// downhill, tan(phi+/2) = s* (sliding_ratio_at).
+void set_sleeping_velocity(const Model& model, double ratio, const Eigen::Vector2d& down_dir,
                            StationaryState& st) {
   const double R = model.top.tip_radius;
   const Eigen::Vector3d rolling = R * Eigen::Vector3d(st.omega.y(), -st.omega.x(), 0.0);
   st.rolling_speed = rolling.norm();
-  st.sliding_speed = st.rolling_speed * sliding_ratio;
+  st.sliding_speed = st.rolling_speed * ratio;
   st.velocity = Eigen::Vector2d(rolling.x(), rolling.y()) + st.sliding_speed * down_dir;
   st.phi_defined = st.rolling_speed > 0.0;
   if (st.phi_defined) {
@@ -156,7 +156,7 @@ StationaryGeometry stationary_geometry(const Model& model) {
     return g;
   }
   st.exists = true;
-  g.sliding_ratio = sliding_ratio(st.slip);
+  g.sliding_ratio = sliding_ratio_at(st.slip);
   g.downhill = downhill_direction(model);
   return g;
 }
@@ -180,7 +180,7 @@ StationaryState stationary_state_on_root(const Model& model, double spin, double
   st.exists = true;
   st.slip = slip;
   st.omega = spin * st.f_hat;
-  set_sleeping_velocity(model, sliding_ratio(slip), downhill_direction(model), st);
+  set_sleeping_velocity(model, sliding_ratio_at(slip), downhill_direction(model), st);
   return st;
 }
 
