@@ -16,9 +16,10 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
 labelled "NODE cpuN"; the harness and its subscribers then keep off CPU N). Figures are noisy on a shared 2-core
 machine: the load average is recorded, and --repeat N runs the configurations N times in turn (round-robin, so
-load drifts hit all alike) and the table gives each one's medians. --node LABEL=BIN runs another build's top_sim_node (with the libraries next to it, e.g. a
-copy of an earlier devel/lib); given more than once (LABEL= alone: the package's node), the builds take turns within
-each round, so before and after are measured under the same load.
+load drifts hit all alike) and the table gives each one's medians. --node LABEL=BIN runs another build's
+top_sim_node (with the libraries next to it, e.g. a copy of an earlier devel/lib); given more than once (LABEL=
+alone: the package's node), the builds take turns within each round, so before and after are measured under the
+same load.
 """
 import argparse
 import json

@@ -37,9 +37,9 @@ struct SampleAnalysis {
   double energy = 0.0;  // mechanical energy E [J]
 };
 
-// `stationary`: the model's stationary_geometry(), solved once per model change.
+// `geometry`: the model's stationary_geometry(), solved once per model change.
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
-                              const StationaryGeometry& stationary);
+                              const StationaryGeometry& geometry);
 
 class Simulator {
  public:
@@ -148,8 +148,9 @@ class Simulator {
   std::uint64_t cadence_k_ = 0;
   Regime cadence_regime_ = Regime::nutating;
   std::array<double, kRegimeCount> regime_seconds_{};
-  StationaryGeometry stationary_;  // solved at reset and commands (no spin): the cadence reads its existence and
-                                  // unstable root, a sample adds omega* and u* at its spin
+  // Solved at reset and commands (no spin): the cadence reads its existence and unstable root, a sample adds
+  // omega* and u* at its spin.
+  StationaryGeometry stationary_geometry_;
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_

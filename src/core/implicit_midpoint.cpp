@@ -136,9 +136,9 @@ void ImplicitMidpoint::fit(double h) {
 }
 
 // The first guess of K. After a step of the same h: that step's K carried on by the midpoint rule's own linear map
-// R = (I - h/2 J)^-1 (I + h/2 J) = 2 (I - h/2 J)^-1 - I (fitted: hG in place of h, in the kept J's frame), exact for the linearised nutation, which extrapolating the
-// slopes in time would amplify (by 4 sin^2(h w / 2) = 2.1 at h w = 1.6, linearly); one iteration fewer per step on
-// the frictionless top. After a step of another h: that K scaled; after a reset: 0. It reads step sizes only, not
+// R = (I - h/2 J)^-1 (I + h/2 J) = 2 (I - h/2 J)^-1 - I (fitted: hG in place of h, in the kept J's frame), exact
+// for the linearised nutation, which extrapolating the slopes in time would amplify (by 4 sin^2(h w / 2) = 2.1 at
+// h w = 1.6, linearly); one iteration fewer per step on the frictionless top. After a step of another h: that K scaled; after a reset: 0. It reads step sizes only, not
 // times: a run sampled at step ends predicts the same bits.
 ImplicitMidpoint::Vec ImplicitMidpoint::predict(double h) const {
   if (!has_last_) return Vec::Zero();

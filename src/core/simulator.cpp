@@ -151,7 +151,7 @@ void Simulator::reset() {
   mode_since_ = t_;
   restart_stepper(true);
   invalidate_sample();
-  stationary_ = stationary_geometry(model_);
+  stationary_geometry_ = stationary_geometry(model_);
   // The regime cadence restarts here: its first point is the initial state, classified from nutating.
   cadence_t_ = t_;
   cadence_k_ = 0;
@@ -265,7 +265,7 @@ void Simulator::apply_pending() {
     for (const Command& c : due) apply_now(c);
   }
   invalidate_sample();
-  stationary_ = stationary_geometry(model_);  // the inclination or the law may have changed
+  stationary_geometry_ = stationary_geometry(model_);  // the inclination or the law may have changed
   reclose_contact();
   restart_stepper(true);
 }
@@ -547,7 +547,7 @@ void Simulator::run_cadence(double t_end) {
 // One cadence point: the overflow guard (a run nobody reads still stops) and the classification that carries the
 // hysteresis; the interval since the last point counts for that point's regime.
 void Simulator::cadence_point(double t, const StateVector& y) {
-  const SampleAnalysis a = cadence_analysis(model_, mode_, y, stationary_.state);
+  const SampleAnalysis a = cadence_analysis(model_, mode_, y, stationary_geometry_.state);
   // A finite state whose energy or dynamics overflow (spins ~1e150 rad/s and up) is no answer either.
   if (const char* part = overflowed_part(a)) {
     y_ = y;  // the top stops at the point that overflowed
@@ -572,7 +572,7 @@ std::array<double, kRegimeCount> Simulator::regime_seconds() const {
 // of the last cadence point (a read commits nothing: the next read or cadence point sees the same history).
 const SampleAnalysis& Simulator::sample() const {
   if (!sample_valid_) {
-    sample_ = analyse_sample(model_, mode_, y_, stationary_);
+    sample_ = analyse_sample(model_, mode_, y_, stationary_geometry_);
     sample_regime_ = classify(model_.regime, sample_.indicators, false, cadence_regime_);
     sample_valid_ = true;
   }
@@ -591,10 +591,10 @@ Snapshot Simulator::snapshot() const {
 }
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
-                              const StationaryGeometry& stationary) {
+                              const StationaryGeometry& geometry) {
   count(work_counters().sample_analyses);
-  SampleAnalysis a = cadence_analysis(model, mode, y, stationary.state);
-  a.stationary = stationary_state(model, stationary, shell_spin(y));  // and the sleeping state at this spin
+  SampleAnalysis a = cadence_analysis(model, mode, y, geometry.state);
+  a.stationary = stationary_state(model, geometry, shell_spin(y));  // and the sleeping state at this spin
   return a;
 }
 
