@@ -40,6 +40,9 @@ struct SampleAnalysis {
 // `geometry`: the model's stationary_geometry(), solved once per model change.
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
                               const StationaryGeometry& geometry);
+// The same, from y's dynamics (evaluate_dynamics in `mode`) and energy evaluated already.
+SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const StationaryGeometry& geometry,
+                              const Dynamics& dynamics, double energy);
 
 class Simulator {
  public:
@@ -109,7 +112,7 @@ class Simulator {
   bool scan_flight(double t_end, const StateVector& y1);
   void select_stepper();
   const Stepper& numeric_stepper() const { return closed_flight_ ? *parked_ : *stepper_; }
-  ModeMargins step_end_margins(const StateVector& y);
+  ModeMargins step_end_margins(const StateVector& y, Dynamics& evaluated, bool& has_evaluated);
   int fired(const ModeMargins& m, const StateVector& y) const;
   void handle_event(int event, const ModeMargins& m);
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
@@ -151,6 +154,18 @@ class Simulator {
   // Solved at reset and commands (no spin): the cadence reads its existence and unstable root, a sample adds
   // omega* and u* at its spin.
   StationaryGeometry stationary_geometry_;
+  // The end of the last event scan when it fell inside a step (a tick's end): its state, energy and, when the
+  // margins took a full evaluation there, its dynamics. The tick's state and its sample read them instead of
+  // evaluating the same state again. Valid until the stepper restarts (every change of state, model or mode).
+  struct ScanEnd {
+    bool valid = false;
+    bool has_dynamics = false;
+    double t = 0.0;
+    StateVector y{};
+    double energy = 0.0;
+    Dynamics dynamics;
+  };
+  ScanEnd scan_end_;
 
   ContactMode mode_ = ContactMode::slipping;
   ModeMargins last_margins_;          // at scanned_

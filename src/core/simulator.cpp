@@ -82,14 +82,21 @@ const char* overflowed_part(const SampleAnalysis& a) {
 
 // What a regime cadence point needs of a state: the dynamics, the indicators and the energy, with no stationary
 // solve: the indicators read only the model's answer (exists, slip_unstable), which no spin changes. A sample
-// adds the stationary state at its spin.
+// adds the stationary state at its spin. analysis_of takes the dynamics and the energy evaluated already.
+SampleAnalysis analysis_of(const Model& model, const StateVector& y, const Dynamics& dynamics, double energy,
+                           const StationaryState& model_stationary) {
+  SampleAnalysis a;
+  a.dynamics = dynamics;
+  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
+  a.energy = energy;
+  return a;
+}
+
 SampleAnalysis cadence_analysis(const Model& model, ContactMode mode, const StateVector& y,
                                 const StationaryState& model_stationary) {
-  SampleAnalysis a;
-  evaluate_dynamics(model, mode, y, a.dynamics);
-  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
-  a.energy = mechanical_energy(model, y);
-  return a;
+  Dynamics dynamics;
+  evaluate_dynamics(model, mode, y, dynamics);
+  return analysis_of(model, y, dynamics, mechanical_energy(model, y), model_stationary);
 }
 
 std::string stalled_message(double t) {
@@ -170,6 +177,7 @@ void Simulator::restart_stepper(bool rebase_energy) {
   layer_kink_at_rest_ = raw_friction_coefficient(model_.friction, 0.0) > 0.0;
   select_stepper();
   stepper_->reset(y_, t_);  // before it, the stepper's state is no argument of a right-hand side of this model
+  scan_end_.valid = false;
   scanned_ = t_;
   last_margins_ = margins_of(model_, mode_, y_);
   lift_armed_ = last_margins_.lift > 0.0;
@@ -335,9 +343,12 @@ bool Simulator::advance_to(double t_target, double budget_seconds, std::chrono::
       fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, stepper_->time()) + " (" + e.what() + ")");
     }
     if (fault_ != ContactFault::none) break;
-    if (stepper_->time() > t_stop)
-      stepper_->state_at(t_stop, y_);
-    else
+    if (stepper_->time() > t_stop) {
+      if (scan_end_.valid && scan_end_.t == t_stop)
+        y_ = scan_end_.y;  // the scan at t_stop interpolated the same state
+      else
+        stepper_->state_at(t_stop, y_);
+    } else
       y_ = stepper_->state();
     t_ = t_stop;
     invalidate_sample();
@@ -365,9 +376,12 @@ int Simulator::fired(const ModeMargins& m, const StateVector& y) const {
 // the state is at the located event (or fault) instant, the event is handled and the stepper restarted.
 bool Simulator::scan_events(double t_end) {
   const double t0 = scanned_;
-  StateVector y1;
-  if (t_end >= stepper_->time()) y1 = stepper_->state(); else stepper_->state_at(t_end, y1);
-  const double residual = balance_.residual(model_, y1);
+  const bool inside = t_end < stepper_->time();
+  scan_end_.valid = false;
+  StateVector& y1 = scan_end_.y;
+  if (inside) stepper_->state_at(t_end, y1); else y1 = stepper_->state();
+  scan_end_.energy = mechanical_energy(model_, y1);
+  const double residual = balance_.residual(scan_end_.energy, y1);
   max_residual_ = std::max(max_residual_, residual);
   if (!(residual <= scene_.integrator.max_energy_residual)) {  // an unstable step: its events would be fiction
     stop_at_step_start(" (the energy balance drifted by " + format_number(residual) + " of the energy scale, over " +
@@ -381,7 +395,7 @@ bool Simulator::scan_events(double t_end) {
     run_cadence(t_end);
     return fault_ == ContactFault::none;
   }
-  const ModeMargins m1 = step_end_margins(y1);
+  const ModeMargins m1 = step_end_margins(y1, scan_end_.dynamics, scan_end_.has_dynamics);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
     const double n = std::ceil((t_end - t0) / sample_spacing(model_, y1));
@@ -420,18 +434,23 @@ bool Simulator::scan_events(double t_end) {
   }
   last_margins_ = m1;
   scanned_ = t_end;
+  scan_end_.t = t_end;
+  scan_end_.valid = inside;
   run_cadence(t_end);
   return fault_ == ContactFault::none;
 }
 
 // The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
 // its recorded contact force serves when y is the stepper's state in every bit (else one full evaluation).
-ModeMargins Simulator::step_end_margins(const StateVector& y) {
+ModeMargins Simulator::step_end_margins(const StateVector& y, Dynamics& evaluated, bool& has_evaluated) {
   ModeMargins m;
+  has_evaluated = false;
   if (stepper_->state_was_last_rhs() && std::memcmp(y.data(), stepper_->state().data(), sizeof(StateVector)) == 0 &&
       margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m))
     return m;
-  return margins_of(model_, mode_, y);
+  evaluate_dynamics(model_, mode_, y, evaluated);
+  has_evaluated = true;
+  return evaluated.margins;
 }
 
 void Simulator::handle_event(int event, const ModeMargins& m) {
@@ -572,7 +591,10 @@ std::array<double, kRegimeCount> Simulator::regime_seconds() const {
 // of the last cadence point (a read commits nothing: the next read or cadence point sees the same history).
 const SampleAnalysis& Simulator::sample() const {
   if (!sample_valid_) {
-    sample_ = analyse_sample(model_, mode_, y_, stationary_geometry_);
+    const bool scanned = scan_end_.valid && scan_end_.has_dynamics && scan_end_.t == t_ &&
+                         std::memcmp(scan_end_.y.data(), y_.data(), sizeof(StateVector)) == 0;
+    sample_ = scanned ? analyse_sample(model_, y_, stationary_geometry_, scan_end_.dynamics, scan_end_.energy)
+                      : analyse_sample(model_, mode_, y_, stationary_geometry_);
     sample_regime_ = classify(model_.regime, sample_.indicators, false, cadence_regime_);
     sample_valid_ = true;
   }
@@ -592,8 +614,15 @@ Snapshot Simulator::snapshot() const {
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
                               const StationaryGeometry& geometry) {
+  Dynamics dynamics;
+  evaluate_dynamics(model, mode, y, dynamics);
+  return analyse_sample(model, y, geometry, dynamics, mechanical_energy(model, y));
+}
+
+SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const StationaryGeometry& geometry,
+                              const Dynamics& dynamics, double energy) {
   count(work_counters().sample_analyses);
-  SampleAnalysis a = cadence_analysis(model, mode, y, geometry.state);
+  SampleAnalysis a = analysis_of(model, y, dynamics, energy, geometry.state);
   a.stationary = stationary_state(model, geometry, shell_spin(y));  // and the sleeping state at this spin
   return a;
 }
