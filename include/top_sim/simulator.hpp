@@ -154,16 +154,16 @@ class Simulator {
   // Solved at reset and commands (no spin): the cadence reads its existence and unstable root, a sample adds
   // omega* and u* at its spin.
   StationaryGeometry stationary_geometry_;
-  // The end of the last event scan when it fell inside a step (a tick's end): its state, energy and, when the
-  // margins took a full evaluation there, its dynamics. The tick's state and its sample read them instead of
-  // evaluating the same state again. Valid until the stepper restarts (every change of state, model or mode).
+  // The end of the last event scan when it fell inside a step (a tick's end): its state and energy, and whether
+  // the margins took a full evaluation there (left in sample_.dynamics, which the sample of that state would
+  // write: no other cache lines per top). The tick's state and its sample read them instead of evaluating the
+  // same state again. Valid until the stepper restarts (every change of state, model or mode).
   struct ScanEnd {
     bool valid = false;
     bool has_dynamics = false;
     double t = 0.0;
-    StateVector y{};
     double energy = 0.0;
-    Dynamics dynamics;
+    StateVector y{};
   };
   ScanEnd scan_end_;
 

@@ -5,6 +5,7 @@
 #include "implicit_midpoint.hpp"
 
 #include <algorithm>
+#include <array>
 #include <boost/numeric/odeint.hpp>
 #include <boost/numeric/ublas/matrix.hpp>
 #include <boost/numeric/ublas/vector.hpp>
@@ -12,6 +13,7 @@
 #include <cstring>
 #include <limits>
 #include <stdexcept>
+#include <string>
 
 namespace top_sim {
 
@@ -51,19 +53,6 @@ struct CountingSystem {
   std::uint64_t* counter;
   void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
     ++*counter;
-    (*system)(x, dxdt);
-  }
-};
-
-// Counts right-hand sides and keeps the last one's output buffer: after an accepted dopri5 step, odeint's
-// first-same-as-last derivative at the new state.
-struct FsalSystem {
-  const System* system;
-  std::uint64_t* counter;
-  StateVector** last_dxdt;
-  void operator()(const StateVector& x, StateVector& dxdt, double /*t*/) const {
-    ++*counter;
-    *last_dxdt = &dxdt;
     (*system)(x, dxdt);
   }
 };
@@ -295,61 +284,173 @@ class PiAdjuster : public odeint::default_step_adjuster<double, double> {
   PiMemory* memory_;
 };
 
+// The stages that live only inside one step (the trial state, k2, the error estimate): one set per thread, hot in
+// the cache, instead of one per top (a thousand tops' steppers are the largest part of the node's memory per tick).
+struct Dopri5Scratch {
+  StateVector x_tmp{}, k2{}, x_err{};
+};
+
+Dopri5Scratch& dopri5_scratch() {
+  static thread_local Dopri5Scratch scratch;
+  return scratch;
+}
+
+// odeint's dense-output, controlled, first-same-as-last dopri5 (runge_kutta_dopri5 in dense_output_runge_kutta of
+// controlled_runge_kutta) with the same operations in the same order through the same algebra, so the same bits;
+// its per-top storage is what a step leaves for the next and for the dense output: the two states and derivatives
+// (toggled), k3 to k6 (960 bytes, 15 cache lines; odeint's objects held 2032 bytes).
 class Dopri5Stepper : public Stepper {
-  using Base = odeint::runge_kutta_dopri5<StateVector, double, StateVector, double, PairAlgebra>;
-  using Controlled = odeint::controlled_runge_kutta<Base, PhaseFreeErrorChecker, PiAdjuster>;
-  using Dense = odeint::dense_output_runge_kutta<Controlled>;
+  using Ops = odeint::default_operations;
 
  public:
   Dopri5Stepper(const IntegratorSettings& s, System system)
       : settings_(s),
         system_(std::move(system)),
         memory_{1e-4, false, &stats.rejected},
-        dense_(Controlled(PhaseFreeErrorChecker(s.atol, s.rtol), PiAdjuster(s.max_dt, &memory_))) {}
+        checker_(s.atol, s.rtol),
+        adjuster_(s.max_dt, &memory_) {}
   Dopri5Stepper(const Dopri5Stepper&) = delete;  // the controller points at this object's stats
   Dopri5Stepper& operator=(const Dopri5Stepper&) = delete;
 
   void reset(const StateVector& y, double t) override { reset(y, t, next_dt_ > 0.0 ? next_dt_ : settings_.dt); }
   void reset(const StateVector& y, double t, double dt) {
-    dense_.initialize(y, t, dt);
+    x_[current_] = y;
+    t_ = t;
+    dt_ = dt;
+    derivative_ready_ = false;
     memory_.error = 1e-4;  // a new start: no error history
     memory_.rejected = false;
     renormalized_ = false;
     restarted_ = true;
   }
   double next_step_size() const { return next_dt_; }
-  // odeint's FSAL dopri5 ends every try, accepted or not, with the system at the new state (and initialize() calls
-  // nothing): after an accepted step that was not renormalised, state() is the last argument.
+  // Every try, accepted or not, ends with the system at its new state: after an accepted step that was not
+  // renormalised, state() is the last argument.
   bool state_was_last_rhs() const override { return !restarted_ && !renormalized_; }
 
   void step(double) override {
-    dense_.do_step(FsalSystem{&system_, &stats.rhs_evaluations, &fsal_});
+    if (!derivative_ready_) {
+      rhs(x_[current_], dxdt_[current_]);
+      derivative_ready_ = true;
+    }
+    Dopri5Scratch& scratch = dopri5_scratch();
+    t_old_ = t_;
+    for (int tries = 0;; ++tries) {
+      const bool accepted = try_step(scratch);
+      if (tries >= kMaxTries)  // odeint's failed_step_checker: its error, its message
+        throw odeint::step_adjustment_error("Max number of iterations exceeded (" + std::to_string(kMaxTries) +
+                                            "). A new step size was not found.");
+      if (accepted) break;
+    }
+    current_ ^= 1;
     restarted_ = false;
-    next_dt_ = dense_.current_time_step();
-    StateVector& y = const_cast<StateVector&>(dense_.current_state());  // odeint's own (non-const) buffer: no setter
+    next_dt_ = dt_;
+    StateVector& y = x_[current_];
     const double n2 = y[idx::f] * y[idx::f] + y[idx::f + 1] * y[idx::f + 1] + y[idx::f + 2] * y[idx::f + 2];
     renormalized_ = std::abs(n2 - 1.0) > 1e-10 && std::isfinite(n2);  // only when f_hat has drifted
     if (renormalized_) renormalize(y, n2);
     ++stats.steps;
   }
 
-  double time() const override { return dense_.current_time(); }
-  // After reset() odeint keeps the last step's interval (initialize() does not clear it): there is none to offer.
-  double previous_time() const override { return restarted_ ? time() : interval().previous_time(); }
-  const StateVector& state() const override { return dense_.current_state(); }
+  double time() const override { return t_; }
+  // After reset() the last step's interval is kept (as odeint's initialize() keeps it): there is none to offer.
+  double previous_time() const override { return restarted_ ? time() : t_old_; }
+  const StateVector& state() const override { return x_[current_]; }
   double last_step_size() const override { return time() - previous_time(); }
 
   void state_at(double t, StateVector& y) const override {
     if (t >= time() || restarted_) {
-      y = dense_.current_state();
+      y = x_[current_];
       return;
     }
-    interval().calc_state(t, y);
+    interpolate(t, y);
     normalize_figure_axis(y);
   }
 
  private:
-  const Dense& interval() const { return dense_; }
+  static constexpr int kMaxTries = 500;
+
+  void rhs(const StateVector& x, StateVector& dxdt) {
+    ++stats.rhs_evaluations;
+    system_(x, dxdt);
+  }
+
+  // controlled_runge_kutta::try_step (first same as last): writes the other state and derivative; on success
+  // advances t_; either way dt_ is the next try's step.
+  bool try_step(Dopri5Scratch& s) {
+    if (!adjuster_.check_step_size_limit(dt_)) {
+      dt_ = adjuster_.get_max_dt();
+      return false;
+    }
+    const double dt = dt_;
+    constexpr double b21 = 1.0 / 5.0;
+    constexpr double b31 = 3.0 / 40.0, b32 = 9.0 / 40.0;
+    constexpr double b41 = 44.0 / 45.0, b42 = -56.0 / 15.0, b43 = 32.0 / 9.0;
+    constexpr double b51 = 19372.0 / 6561.0, b52 = -25360.0 / 2187.0, b53 = 64448.0 / 6561.0, b54 = -212.0 / 729.0;
+    constexpr double b61 = 9017.0 / 3168.0, b62 = -355.0 / 33.0, b63 = 46732.0 / 5247.0, b64 = 49.0 / 176.0,
+                     b65 = -5103.0 / 18656.0;
+    const StateVector& x = x_[current_];
+    const StateVector& k1 = dxdt_[current_];
+    StateVector& out = x_[current_ ^ 1];
+    StateVector& k7 = dxdt_[current_ ^ 1];
+    PairAlgebra::for_each3(s.x_tmp, x, k1, Ops::scale_sum2<double, double>(1.0, dt * b21));
+    rhs(s.x_tmp, s.k2);
+    PairAlgebra::for_each4(s.x_tmp, x, k1, s.k2, Ops::scale_sum3<double, double, double>(1.0, dt * b31, dt * b32));
+    rhs(s.x_tmp, k3_);
+    PairAlgebra::for_each5(s.x_tmp, x, k1, s.k2, k3_,
+                           Ops::scale_sum4<double, double, double, double>(1.0, dt * b41, dt * b42, dt * b43));
+    rhs(s.x_tmp, k4_);
+    PairAlgebra::for_each6(
+        s.x_tmp, x, k1, s.k2, k3_, k4_,
+        Ops::scale_sum5<double, double, double, double, double>(1.0, dt * b51, dt * b52, dt * b53, dt * b54));
+    rhs(s.x_tmp, k5_);
+    PairAlgebra::for_each7(s.x_tmp, x, k1, s.k2, k3_, k4_, k5_,
+                           Ops::scale_sum6<double, double, double, double, double, double>(
+                               1.0, dt * b61, dt * b62, dt * b63, dt * b64, dt * b65));
+    rhs(s.x_tmp, k6_);
+    PairAlgebra::for_each7(out, x, k1, k3_, k4_, k5_, k6_,
+                           Ops::scale_sum6<double, double, double, double, double, double>(
+                               1.0, dt * kC1, dt * kC3, dt * kC4, dt * kC5, dt * kC6));
+    rhs(out, k7);
+    const double dc1 = kC1 - 5179.0 / 57600.0, dc3 = kC3 - 7571.0 / 16695.0, dc4 = kC4 - 393.0 / 640.0,
+                 dc5 = kC5 - -92097.0 / 339200.0, dc6 = kC6 - 187.0 / 2100.0, dc7 = -1.0 / 40.0;
+    PairAlgebra::for_each7(s.x_err, k1, k3_, k4_, k5_, k6_, k7,
+                           Ops::scale_sum6<double, double, double, double, double, double>(
+                               dt * dc1, dt * dc3, dt * dc4, dt * dc5, dt * dc6, dt * dc7));
+    PairAlgebra algebra;
+    const double error = checker_.error(algebra, x, k1, s.x_err, dt);
+    if (error > 1.0) {
+      dt_ = adjuster_.decrease_step(dt, error, 4);
+      return false;
+    }
+    t_ += dt;
+    dt_ = adjuster_.increase_step(dt, error, 5);
+    return true;
+  }
+
+  // runge_kutta_dopri5::calc_state: the continuous extension over the last step.
+  void interpolate(double t, StateVector& y) const {
+    const double dt = t_ - t_old_;
+    const double theta = (t - t_old_) / dt;
+    const double X1 = 5.0 * (2558722523.0 - 31403016.0 * theta) / 11282082432.0;
+    const double X3 = 100.0 * (882725551.0 - 15701508.0 * theta) / 32700410799.0;
+    const double X4 = 25.0 * (443332067.0 - 31403016.0 * theta) / 1880347072.0;
+    const double X5 = 32805.0 * (23143187.0 - 3489224.0 * theta) / 199316789632.0;
+    const double X6 = 55.0 * (29972135.0 - 7076736.0 * theta) / 822651844.0;
+    const double X7 = 10.0 * (7414447.0 - 829305.0 * theta) / 29380423.0;
+    const double theta_m_1 = theta - 1.0;
+    const double theta_sq = theta * theta;
+    const double A = theta_sq * (3.0 - 2.0 * theta);
+    const double B = theta_sq * theta_m_1;
+    const double C = theta_sq * theta_m_1 * theta_m_1;
+    const double D = theta * theta_m_1 * theta_m_1;
+    const double b1 = A * kC1 - C * X1 + D, b3 = A * kC3 + C * X3, b4 = A * kC4 - C * X4, b5 = A * kC5 + C * X5,
+                 b6 = A * kC6 - C * X6, b7 = B + C * X7;
+    const int old = current_ ^ 1;
+    PairAlgebra::for_each8(y, x_[old], dxdt_[old], k3_, k4_, k5_, k6_, dxdt_[current_],
+                           Ops::scale_sum7<double, double, double, double, double, double, double>(
+                               1.0, dt * b1, dt * b3, dt * b4, dt * b5, dt * b6, dt * b7));
+  }
 
   // f_hat back to unit length in place, and the first-same-as-last derivative with it (no re-initialisation): only
   // f' = omega x f reads |f| (the model reads f_hat normalised) and it is linear in f, so f' / |f| is what the
@@ -357,17 +458,28 @@ class Dopri5Stepper : public Stepper {
   void renormalize(StateVector& y, double n2) {
     normalize_figure_axis(y);
     const double n = std::sqrt(n2);  // normalize_figure_axis's norm
-    for (std::size_t i = 0; i < 3; ++i) (*fsal_)[idx::f + i] /= n;
+    for (std::size_t i = 0; i < 3; ++i) dxdt_[current_][idx::f + i] /= n;
   }
 
-  IntegratorSettings settings_;
-  System system_;
-  PiMemory memory_;  // before dense_: its controller points here
-  Dense dense_;
-  StateVector* fsal_ = nullptr;  // odeint's buffer of the current derivative
-  double next_dt_ = 0.0;
+  // The 5th-order weights (also the dense output's at theta = 1).
+  static constexpr double kC1 = 35.0 / 384.0, kC3 = 500.0 / 1113.0, kC4 = 125.0 / 192.0, kC5 = -2187.0 / 6784.0,
+                          kC6 = 11.0 / 84.0;
+
+  // First: what every step reads and writes, in 15 consecutive cache lines.
+  alignas(64) std::array<StateVector, 2> x_{};
+  std::array<StateVector, 2> dxdt_{};
+  StateVector k3_{}, k4_{}, k5_{}, k6_{};
+  int current_ = 0;  // x_[current_] is the state at t_; the other is the last step's start (or a try's output)
+  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
+  bool derivative_ready_ = false;
   bool renormalized_ = false;
   bool restarted_ = true;  // no step since reset()
+  double next_dt_ = 0.0;
+  IntegratorSettings settings_;
+  System system_;
+  PiMemory memory_;  // before adjuster_: it points here
+  PhaseFreeErrorChecker checker_;
+  PiAdjuster adjuster_;
 };
 
 // ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------

@@ -395,7 +395,8 @@ bool Simulator::scan_events(double t_end) {
     run_cadence(t_end);
     return fault_ == ContactFault::none;
   }
-  const ModeMargins m1 = step_end_margins(y1, scan_end_.dynamics, scan_end_.has_dynamics);
+  invalidate_sample();  // its dynamics may take this state's
+  const ModeMargins m1 = step_end_margins(y1, sample_.dynamics, scan_end_.has_dynamics);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
     const double n = std::ceil((t_end - t0) / sample_spacing(model_, y1));
@@ -593,7 +594,7 @@ const SampleAnalysis& Simulator::sample() const {
   if (!sample_valid_) {
     const bool scanned = scan_end_.valid && scan_end_.has_dynamics && scan_end_.t == t_ &&
                          std::memcmp(scan_end_.y.data(), y_.data(), sizeof(StateVector)) == 0;
-    sample_ = scanned ? analyse_sample(model_, y_, stationary_geometry_, scan_end_.dynamics, scan_end_.energy)
+    sample_ = scanned ? analyse_sample(model_, y_, stationary_geometry_, sample_.dynamics, scan_end_.energy)
                       : analyse_sample(model_, mode_, y_, stationary_geometry_);
     sample_regime_ = classify(model_.regime, sample_.indicators, false, cadence_regime_);
     sample_valid_ = true;
