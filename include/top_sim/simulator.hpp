@@ -108,6 +108,7 @@ class Simulator {
   void apply_now(const Command& c);
   void apply_pending();
   bool scene_event_due() const;  // the scene's next event is at or before t_
+  void schedule_next_event();    // next_event_t_ from next_event_ and t_origin_
   bool scan_events(double t_end);
   bool scan_flight(double t_end, const StateVector& y1);
   void select_stepper();
@@ -125,35 +126,34 @@ class Simulator {
   void cadence_point(double t, const StateVector& y);
   bool in_stiff_layer(const StateVector& y, bool inside) const;
 
-  Scene scene_;
-  Model model_;
-  std::unique_ptr<Stepper> stepper_;
-  // The stepper not in use: the closed-form flight (flight.hpp) while stepping, the numeric one in such a flight.
-  std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);
-  bool closed_flight_ = false;  // stepper_ is the closed-form flight
+  // What every advance and event scan reads or writes comes first, in a few cache lines: a node advances a
+  // thousand tops per tick, and the lines a top touches are what its tick costs beyond the arithmetic.
   StateVector y_{};
   double t_ = 0.0;
-  double t_origin_ = 0.0;        // time of the last reset: scripted events are relative to it
+  double t_origin_ = 0.0;              // time of the last reset: scripted events are relative to it
+  double scanned_ = 0.0;               // the current step's dense output is scanned for events up to here
+  double next_event_t_ = 0.0;          // t_origin_ + the next scripted event's t (infinite when none is left)
+  double max_energy_residual_ = 0.0;   // the scene's integrator.max_energy_residual
+  std::unique_ptr<Stepper> stepper_;
   std::size_t next_event_ = 0;
-  std::vector<Command> pending_;
-  mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
+  ContactFault fault_ = ContactFault::none;
+  ContactMode mode_ = ContactMode::slipping;
+  bool closed_flight_ = false;  // stepper_ is the closed-form flight
+  bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
+  // The slip-onset layer of the current model (set at each restart): its half width in |v_t| and whether mu(0) > 0.
+  bool layer_kink_at_rest_ = false;
   std::atomic<bool> has_pending_{false};  // pending_ is not empty (set under the lock; read without it)
+  mutable bool sample_valid_ = false;
+  double layer_width_ = 0.0;
+  double cos_max_tilt_ = 1.0;
   EnergyBalance balance_;
   double max_residual_ = 0.0;
-  ContactFault fault_ = ContactFault::none;
-  std::string fault_message_;
-  // The lazy sample of (y_, t_, model_, mode_): valid until one of them changes (single owning thread).
-  mutable SampleAnalysis sample_;
-  mutable Regime sample_regime_ = Regime::nutating;
-  mutable bool sample_valid_ = false;
+  ModeMargins last_margins_;          // at scanned_
+  ContactForceRecord record_;         // the contact force of the last right-hand side (at stepper_'s state if it says so)
   // The regime cadence: the last point's time, index and regime (the hysteresis of classify()), and the seconds.
   double cadence_t_ = 0.0;
   std::uint64_t cadence_k_ = 0;
   Regime cadence_regime_ = Regime::nutating;
-  std::array<double, kRegimeCount> regime_seconds_{};
-  // Solved at reset and commands (no spin): the cadence reads its existence and unstable root, a sample adds
-  // omega* and u* at its spin.
-  StationaryGeometry stationary_geometry_;
   // The end of the last event scan when it fell inside a step (a tick's end): its state and energy, and whether
   // the margins took a full evaluation there (left in sample_.dynamics, which the sample of that state would
   // write: no other cache lines per top). The tick's state and its sample read them instead of evaluating the
@@ -166,16 +166,22 @@ class Simulator {
     StateVector y{};
   };
   ScanEnd scan_end_;
+  Model model_;
+  // The lazy sample of (y_, t_, model_, mode_): valid until one of them changes (single owning thread).
+  mutable SampleAnalysis sample_;
+  mutable Regime sample_regime_ = Regime::nutating;
+  // Solved at reset and commands (no spin): the cadence reads its existence and unstable root, a sample adds
+  // omega* and u* at its spin.
+  StationaryGeometry stationary_geometry_;
 
-  ContactMode mode_ = ContactMode::slipping;
-  ModeMargins last_margins_;          // at scanned_
-  ContactForceRecord record_;         // the contact force of the last right-hand side (at stepper_'s state if it says so)
-  double cos_max_tilt_ = 1.0;
-  // The slip-onset layer of the current model (set at each restart): its half width in |v_t| and whether mu(0) > 0.
-  double layer_width_ = 0.0;
-  bool layer_kink_at_rest_ = false;
-  double scanned_ = 0.0;              // the current step's dense output is scanned for events up to here
-  bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
+  // Read at resets, commands, events and faults.
+  Scene scene_;
+  // The stepper not in use: the closed-form flight (flight.hpp) while stepping, the numeric one in such a flight.
+  std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);
+  std::vector<Command> pending_;
+  mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
+  std::string fault_message_;
+  std::array<double, kRegimeCount> regime_seconds_{};
   double mode_since_ = 0.0;
   std::array<double, kContactModeCount> mode_seconds_{};
   std::vector<ModeSwitch> switches_;

@@ -114,7 +114,8 @@ std::string impact_painleve_message(double t, double denominator) {
 
 }  // namespace
 
-Simulator::Simulator(const Scene& scene) : scene_(scene), model_(scene.model) {
+Simulator::Simulator(const Scene& scene)
+    : max_energy_residual_(scene.integrator.max_energy_residual), model_(scene.model), scene_(scene) {
   stepper_ = make_stepper(
       scene_.integrator,
       [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt, &record_); },
@@ -144,6 +145,7 @@ void Simulator::reset() {
   y_ = initial_state(scene_);
   t_origin_ = t_;
   next_event_ = 0;
+  schedule_next_event();
   fault_ = ContactFault::none;
   fault_message_.clear();
   max_residual_ = 0.0;
@@ -256,8 +258,11 @@ void Simulator::reclose_contact() {
   }
 }
 
-bool Simulator::scene_event_due() const {
-  return next_event_ < scene_.events.size() && t_origin_ + scene_.events[next_event_].t <= t_;
+bool Simulator::scene_event_due() const { return next_event_t_ <= t_; }
+
+void Simulator::schedule_next_event() {
+  next_event_t_ = next_event_ < scene_.events.size() ? t_origin_ + scene_.events[next_event_].t
+                                                     : std::numeric_limits<double>::infinity();
 }
 
 void Simulator::apply_pending() {
@@ -268,7 +273,10 @@ void Simulator::apply_pending() {
     std::vector<Command> due;
     due.swap(pending_);
     has_pending_.store(false, std::memory_order_relaxed);
-    while (scene_event_due()) due.push_back(scene_.events[next_event_++].command);
+    while (scene_event_due()) {
+      due.push_back(scene_.events[next_event_++].command);
+      schedule_next_event();
+    }
     if (due.empty()) return;
     for (const Command& c : due) apply_now(c);
   }
@@ -305,7 +313,7 @@ bool Simulator::advance_to(double t_target, double budget_seconds, std::chrono::
     apply_pending();
     if (fault_ != ContactFault::none) break;
     double t_stop = t_target;
-    if (next_event_ < scene_.events.size()) t_stop = std::min(t_stop, t_origin_ + scene_.events[next_event_].t);
+    t_stop = std::min(t_stop, next_event_t_);
     int stalled = 0;
     try {
       for (;;) {
@@ -383,7 +391,7 @@ bool Simulator::scan_events(double t_end) {
   scan_end_.energy = mechanical_energy(model_, y1);
   const double residual = balance_.residual(scan_end_.energy, y1);
   max_residual_ = std::max(max_residual_, residual);
-  if (!(residual <= scene_.integrator.max_energy_residual)) {  // an unstable step: its events would be fiction
+  if (!(residual <= max_energy_residual_)) {  // an unstable step: its events would be fiction
     stop_at_step_start(" (the energy balance drifted by " + format_number(residual) + " of the energy scale, over " +
                        "integrator.max_energy_residual = " + format_number(scene_.integrator.max_energy_residual) +
                        ": the step is unstable)");
