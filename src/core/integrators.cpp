@@ -304,11 +304,11 @@ class Dopri5Stepper : public Stepper {
 
  public:
   Dopri5Stepper(const IntegratorSettings& s, System system)
-      : settings_(s),
-        system_(std::move(system)),
+      : system_(std::move(system)),
         memory_{1e-4, false, &stats.rejected},
         checker_(s.atol, s.rtol),
-        adjuster_(s.max_dt, &memory_) {}
+        adjuster_(s.max_dt, &memory_),
+        settings_(s) {}
   Dopri5Stepper(const Dopri5Stepper&) = delete;  // the controller points at this object's stats
   Dopri5Stepper& operator=(const Dopri5Stepper&) = delete;
 
@@ -465,21 +465,22 @@ class Dopri5Stepper : public Stepper {
   static constexpr double kC1 = 35.0 / 384.0, kC3 = 500.0 / 1113.0, kC4 = 125.0 / 192.0, kC5 = -2187.0 / 6784.0,
                           kC6 = 11.0 / 84.0;
 
-  // First: what every step reads and writes, in 15 consecutive cache lines.
-  alignas(64) std::array<StateVector, 2> x_{};
-  std::array<StateVector, 2> dxdt_{};
-  StateVector k3_{}, k4_{}, k5_{}, k6_{};
+  // What every step reads and writes, in 18 cache lines: the scalars and the controller next to the object's
+  // header, then the stored stages in 15 aligned lines.
   int current_ = 0;  // x_[current_] is the state at t_; the other is the last step's start (or a try's output)
-  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
   bool derivative_ready_ = false;
   bool renormalized_ = false;
   bool restarted_ = true;  // no step since reset()
+  double t_ = 0.0, t_old_ = 0.0, dt_ = 0.0;
   double next_dt_ = 0.0;
-  IntegratorSettings settings_;
   System system_;
   PiMemory memory_;  // before adjuster_: it points here
   PhaseFreeErrorChecker checker_;
   PiAdjuster adjuster_;
+  alignas(64) std::array<StateVector, 2> x_{};
+  std::array<StateVector, 2> dxdt_{};
+  StateVector k3_{}, k4_{}, k5_{}, k6_{};
+  IntegratorSettings settings_;  // read at resets
 };
 
 // ---- Rosenbrock 4 (stiff) with a finite-difference Jacobian ----------------------------------------------
