@@ -1,5 +1,5 @@
-// Time steppers: Euler, RK4, Dormand-Prince 5(4) and Rosenbrock 4 from Boost.Odeint; semi-implicit Euler and the
-// dopri5/rosenbrock4 switch here.
+// Time steppers: Euler, RK4 and Rosenbrock 4 from Boost.Odeint; Dormand-Prince 5(4) as odeint computes it (its
+// operations, our storage); semi-implicit Euler and the dopri5/rosenbrock4 switch here.
 #include "top_sim/integrators.hpp"
 
 #include "implicit_midpoint.hpp"

@@ -18,11 +18,11 @@ NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const 
                  double real_time_factor, double rate, double wall)
     : name_(std::move(name)),
       prefix_(launch_top ? "" : name_ + "/"),
-      scene_(std::move(scene)),
-      sim_(std::make_unique<top_sim::Simulator>(scene_)),
+      sim_(std::make_unique<top_sim::Simulator>(scene)),
       pacer_(real_time_factor, rate, wall, sim_->time()),
       frames_(frames),
-      node_time_(node_time) {}
+      node_time_(node_time),
+      scene_(std::move(scene)) {}
 
 void NodeTop::advance(double wall, double budget, bool paused, std::chrono::steady_clock::time_point start) {
   const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;
