@@ -110,6 +110,7 @@ class Simulator {
   bool scene_event_due() const;  // the scene's next event is at or before t_
   void schedule_next_event();    // next_event_t_ from next_event_ and t_origin_
   bool scan_events(double t_end);
+  const StateVector& begin_scan(double t_end);
   bool scan_flight(double t_end, const StateVector& y1);
   void select_stepper();
   const Stepper& numeric_stepper() const { return closed_flight_ ? *parked_ : *stepper_; }

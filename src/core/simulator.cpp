@@ -351,13 +351,9 @@ bool Simulator::advance_to(double t_target, double budget_seconds, std::chrono::
       fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, stepper_->time()) + " (" + e.what() + ")");
     }
     if (fault_ != ContactFault::none) break;
-    if (stepper_->time() > t_stop) {
-      if (scan_end_.valid && scan_end_.t == t_stop)
-        y_ = scan_end_.y;  // the scan at t_stop interpolated the same state
-      else
-        stepper_->state_at(t_stop, y_);
-    } else
-      y_ = stepper_->state();
+    if (stepper_->time() <= t_stop) y_ = stepper_->state();
+    else if (scan_end_.valid && scan_end_.t == t_stop) y_ = scan_end_.y;  // the scan at t_stop interpolated it
+    else stepper_->state_at(t_stop, y_);
     t_ = t_stop;
     invalidate_sample();
   }
@@ -384,11 +380,7 @@ int Simulator::fired(const ModeMargins& m, const StateVector& y) const {
 // the state is at the located event (or fault) instant, the event is handled and the stepper restarted.
 bool Simulator::scan_events(double t_end) {
   const double t0 = scanned_;
-  const bool inside = t_end < stepper_->time();
-  scan_end_.valid = false;
-  StateVector& y1 = scan_end_.y;
-  if (inside) stepper_->state_at(t_end, y1); else y1 = stepper_->state();
-  scan_end_.energy = mechanical_energy(model_, y1);
+  const StateVector& y1 = begin_scan(t_end);
   const double residual = balance_.residual(scan_end_.energy, y1);
   max_residual_ = std::max(max_residual_, residual);
   if (!(residual <= max_energy_residual_)) {  // an unstable step: its events would be fiction
@@ -403,7 +395,6 @@ bool Simulator::scan_events(double t_end) {
     run_cadence(t_end);
     return fault_ == ContactFault::none;
   }
-  invalidate_sample();  // its dynamics may take this state's
   const ModeMargins m1 = step_end_margins(y1, sample_.dynamics, scan_end_.has_dynamics);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
@@ -443,10 +434,20 @@ bool Simulator::scan_events(double t_end) {
   }
   last_margins_ = m1;
   scanned_ = t_end;
-  scan_end_.t = t_end;
-  scan_end_.valid = inside;
+  scan_end_.valid = t_end < stepper_->time();  // a tick's end: its state and sample may read this scan's
   run_cadence(t_end);
   return fault_ == ContactFault::none;
+}
+
+// The state at t_end on the last step's dense output, and its energy, into scan_end_ (valid once the scan of a
+// tick's end has completed); the sample is invalidated, as the scan's margins may leave their dynamics in it.
+const StateVector& Simulator::begin_scan(double t_end) {
+  scan_end_.valid = false;
+  scan_end_.t = t_end;
+  if (t_end < stepper_->time()) stepper_->state_at(t_end, scan_end_.y); else scan_end_.y = stepper_->state();
+  scan_end_.energy = mechanical_energy(model_, scan_end_.y);
+  invalidate_sample();
+  return scan_end_.y;
 }
 
 // The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
