@@ -18,9 +18,7 @@ struct EnergyBalance {
   double scale = 1.0;
 
   void rebase(const Model& model, const StateVector& y);
-  // |E + W_diss - reference| / scale
-  double residual(const Model& model, const StateVector& y) const;
-  // The same from an energy already evaluated at y (a sample's): mechanical_energy is not evaluated twice.
+  // |E + W_diss - reference| / scale, from the energy E = mechanical_energy(model, y) its caller has evaluated
   double residual(double energy, const StateVector& y) const;
 };
 

@@ -41,10 +41,6 @@ void EnergyBalance::rebase(const Model& model, const StateVector& y) {
   if (!(scale > 0.0)) scale = 1.0;
 }
 
-double EnergyBalance::residual(const Model& model, const StateVector& y) const {
-  return residual(mechanical_energy(model, y), y);
-}
-
 double EnergyBalance::residual(double energy, const StateVector& y) const {
   return std::abs(energy + y[idx::w_diss] - reference) / scale;
 }
