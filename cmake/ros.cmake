@@ -18,7 +18,7 @@ catkin_package(
 add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/node_parameters.cpp
   src/ros/top_input.cpp src/ros/node_top.cpp src/ros/top_set.cpp src/ros/state_output.cpp
   src/ros/node_diagnostics.cpp src/ros/node_reconfigure.cpp src/ros/top_mesh.cpp src/ros/markers.cpp
-  src/ros/trail.cpp src/ros/cpu_affinity.cpp)
+  src/ros/trail.cpp src/ros/marker_stream.cpp src/ros/cpu_affinity.cpp)
 target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
 add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)

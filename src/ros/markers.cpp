@@ -4,13 +4,15 @@
 #include <cmath>
 #include <cstdio>
 
+#include "control_layout.hpp"
 #include "top_mesh.hpp"
 
 namespace top_sim_ros {
 
 namespace {
 
-// Marker ids, one per kind and fixed: an update replaces the marker of the same (ns, id) in rviz.
+// Marker ids, one per kind and fixed: an update replaces the marker of the same (ns, id) in rviz. The trail's
+// chunks have ids of their own in namespace "trail".
 enum MarkerId : int {
   kPlaneMarker = 0,
   kTipMarker,
@@ -21,12 +23,18 @@ enum MarkerId : int {
   kVelocityMarker,
   kLabelMarker,
   kGridMarker,
-  kTrailMarker,
+  kTrailHeadMarker,
 };
 
 constexpr int kBodySegments = 32;        // facets round the body: smooth at rviz's usual distances
 constexpr double kStripeWidth = 0.5;     // [rad] of the body's circumference painted, centred on body x
 constexpr double kStripeRaise = 0.02;    // stripe height above the surface, relative to the body radius
+constexpr float kBallAlpha = 0.6f;       // a ball-shaped top is see-through: its trail runs under it at first
+constexpr double kLabelHeight = 0.008;   // [m] of one text line
+constexpr Rgb kPlaneColour{0.30f, 0.33f, 0.40f};  // dark: light label text reads on it and on rviz's background
+constexpr float kPlaneAlpha = 0.45f;
+constexpr Rgb kRvizBackground{48.0f / 255.0f, 48.0f / 255.0f, 48.0f / 255.0f};  // rviz/top_sim.rviz
+constexpr Rgb kTrailColour{1.0f, 0.78f, 0.0f};
 
 visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
                                   int type, Rgb c) {
@@ -56,11 +64,11 @@ void add_plane(const Frames& frames, const ros::Time& stamp, const MarkerStyle& 
                visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   const double pitch = style.grid_pitch, half = 0.5 * style.grid_cells * pitch;
-  Marker plane = marker(frames.grid, stamp, "plane", kPlaneMarker, Marker::CUBE, {0.75f, 0.78f, 0.85f});
+  Marker plane = marker(frames.grid, stamp, "plane", kPlaneMarker, Marker::CUBE, kPlaneColour);
   plane.pose.position.z = -0.001;
   plane.scale.x = plane.scale.y = 2.0 * half;
   plane.scale.z = 0.001;
-  plane.color.a = 0.35f;
+  plane.color.a = kPlaneAlpha;
   out.markers.push_back(plane);
 
   Marker grid = marker(frames.grid, stamp, "grid", kGridMarker, Marker::LINE_LIST, {0.6f, 0.6f, 0.65f});
@@ -78,6 +86,24 @@ void add_plane(const Frames& frames, const ros::Time& stamp, const MarkerStyle& 
   out.markers.push_back(grid);
 }
 
+// The stem: a cylinder on the body, or for a ball-shaped top the cap of its sphere round the pole, painted (the
+// physics has no stem: nothing sticks out of the sphere).
+visualization_msgs::Marker stem_marker(const TopShape& shape, const std::string& frame, const ros::Time& stamp) {
+  using visualization_msgs::Marker;
+  const Rgb dark{0.3f, 0.3f, 0.35f};
+  if (!shape.cap.empty()) {
+    Marker cap = marker(frame, stamp, "stem", kStemMarker, Marker::TRIANGLE_LIST, dark);
+    cap.scale.x = cap.scale.y = cap.scale.z = 1.0;
+    for (const Eigen::Vector3d& p : revolve(shape.cap, kBodySegments, 0.0, 2.0 * M_PI)) cap.points.push_back(point(p));
+    return cap;
+  }
+  Marker stem = marker(frame, stamp, "stem", kStemMarker, Marker::CYLINDER, dark);
+  stem.pose.position.z = 0.5 * (shape.stem_bottom + shape.stem_top);
+  stem.scale.x = stem.scale.y = 2.0 * shape.stem_radius;
+  stem.scale.z = shape.stem_top - shape.stem_bottom;
+  return stem;
+}
+
 // Body of revolution, a stripe fixed to the body (it turns with the spin phase that tf carries in the top frame)
 // and the stem; all in the top frame.
 void add_body(const TopShape& shape, Rgb colour, const std::string& frame, const ros::Time& stamp,
@@ -85,6 +111,7 @@ void add_body(const TopShape& shape, Rgb colour, const std::string& frame, const
   using visualization_msgs::Marker;
   Marker body = marker(frame, stamp, "body", kBodyMarker, Marker::TRIANGLE_LIST, colour);
   body.scale.x = body.scale.y = body.scale.z = 1.0;  // TRIANGLE_LIST points are multiplied by the scale
+  if (!shape.cap.empty()) body.color.a = kBallAlpha;
   for (const Eigen::Vector3d& p : revolve(shape.profile, kBodySegments, 0.0, 2.0 * M_PI))
     body.points.push_back(point(p));
   out.markers.push_back(body);
@@ -96,35 +123,34 @@ void add_body(const TopShape& shape, Rgb colour, const std::string& frame, const
                                           stripe_segments, -0.5 * kStripeWidth, kStripeWidth))
     stripe.points.push_back(point(p));
   out.markers.push_back(stripe);
-
-  Marker stem = marker(frame, stamp, "stem", kStemMarker, Marker::CYLINDER, {0.3f, 0.3f, 0.35f});
-  stem.pose.position.z = 0.5 * (shape.stem_bottom + shape.stem_top);
-  stem.scale.x = stem.scale.y = 2.0 * shape.stem_radius;
-  stem.scale.z = shape.stem_top - shape.stem_bottom;
-  out.markers.push_back(stem);
+  out.markers.push_back(stem_marker(shape, frame, stamp));
 }
 
-// Tip sphere and spin arrow in the top frame: fixed to the body, they cannot trail it. The spin arrow points
-// along +f_hat for positive spin, -f_hat for negative (right-hand rule).
-void add_tip_and_spin(const top_sim::Snapshot& s, const top_sim::Top& top, const std::string& frame,
-                      const ros::Time& stamp, visualization_msgs::MarkerArray& out) {
+// The tip sphere in the top frame (a ball-shaped top's sphere is its body).
+void add_tip(const top_sim::Snapshot& s, const top_sim::Top& top, const std::string& frame, const ros::Time& stamp,
+             visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   const Eigen::Quaterniond to_body = s.orientation.normalized().conjugate();
   Marker tip = marker(frame, stamp, "tip", kTipMarker, Marker::SPHERE, {0.9f, 0.2f, 0.2f});
   tip.pose.position = point(to_body * (s.tip_center - s.com));
   tip.scale.x = tip.scale.y = tip.scale.z = 2.0 * top.tip_radius;
-  if (top.com_offset < 0.0) tip.action = Marker::DELETE;  // a tippe top's sphere is its body
+  if (top.com_offset < 0.0) tip.action = Marker::DELETE;
   out.markers.push_back(tip);
+}
 
+// The spin arrow in the top frame, fixed to the body: along +f_hat for positive spin, -f_hat for negative.
+visualization_msgs::Marker spin_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
+  using visualization_msgs::Marker;
+  const Eigen::Quaterniond to_body = s.orientation.normalized().conjugate();
   Marker spin = marker(frame, stamp, "spin", kSpinMarker, Marker::ARROW, {0.1f, 0.5f, 1.0f});
   const double spin_len = arrow_length(s.spin, 100.0, 0.05) * (s.spin >= 0.0 ? 1.0 : -1.0);
   spin.points = {point(Eigen::Vector3d::Zero()), point(spin_len * (to_body * s.figure_axis))};
   spin.scale.x = 0.002; spin.scale.y = 0.004; spin.scale.z = 0.006;
-  out.markers.push_back(spin);
+  return spin;
 }
 
 // Velocity arrow and label in the contact frame (origin at the contact point, plane axes): they move with the
-// top at the tf rate and keep their direction on the plane.
+// top at the tf rate and keep their direction on the plane. The label sits above the top and above the controls.
 void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, const MarkerStyle& style, Rgb colour,
                          const std::string& frame, const ros::Time& stamp, visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
@@ -135,11 +161,25 @@ void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, cons
   vel.scale.x = 0.002; vel.scale.y = 0.004; vel.scale.z = 0.006;
   out.markers.push_back(vel);
 
-  Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, colour);
-  label.pose.position.z = (s.com - s.contact_point).z() + shape.stem_top + 0.02;
-  label.scale.z = 0.008;  // text height [m]
-  label.text = status_text(style.name, s);
+  Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, readable(colour));
+  const double above_top = (s.com - s.contact_point).z() + shape.stem_top + 0.02;
+  label.pose.position.z = std::max(above_top, control_layout::kTop + 1.5 * kLabelHeight);  // two lines, centred
+  label.scale.z = kLabelHeight;
+  label.text = status_text(style.name, s, "\n");
   out.markers.push_back(label);
+}
+
+// sRGB channel -> linear light (WCAG 2's relative luminance).
+double linear(float c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double luminance(Rgb c) { return 0.2126 * linear(c.r) + 0.7152 * linear(c.g) + 0.0722 * linear(c.b); }
+
+// "1.2 mm/s", "3.4 cm/s", "50.1 m/s": three digits whatever the speed.
+std::string speed_text(double v) {
+  char text[32];
+  if (v >= 1.0) std::snprintf(text, sizeof text, "%.1f m/s", v);
+  else if (v >= 0.01) std::snprintf(text, sizeof text, "%.1f cm/s", 100.0 * v);
+  else std::snprintf(text, sizeof text, "%.2f mm/s", 1000.0 * v);
+  return text;
 }
 
 }  // namespace
@@ -173,37 +213,97 @@ Rgb body_colour(const top_sim::Snapshot& s, ColorBy by) {
   return {1.0f, 0.6f, 0.2f};
 }
 
-std::string status_text(const std::string& name, const top_sim::Snapshot& s) {
+double contrast_ratio(Rgb a, Rgb b) {
+  const double la = luminance(a), lb = luminance(b);
+  return (std::max(la, lb) + 0.05) / (std::min(la, lb) + 0.05);
+}
+
+Rgb rviz_background() { return kRvizBackground; }
+
+Rgb plane_over_background() {
+  auto over = [](float plane, float back) { return kPlaneAlpha * plane + (1.0f - kPlaneAlpha) * back; };
+  return {over(kPlaneColour.r, kRvizBackground.r), over(kPlaneColour.g, kRvizBackground.g),
+          over(kPlaneColour.b, kRvizBackground.b)};
+}
+
+// Both backgrounds are dark, so text reads when it is light enough against the lighter one; white reaches 7.7:1.
+Rgb readable(Rgb c, double ratio) {
+  const Rgb back = luminance(plane_over_background()) > luminance(kRvizBackground) ? plane_over_background()
+                                                                                   : kRvizBackground;
+  for (int step = 0; step <= 100; ++step) {
+    const float w = 0.01f * step;
+    const Rgb mixed{c.r + w * (1.0f - c.r), c.g + w * (1.0f - c.g), c.b + w * (1.0f - c.b)};
+    if (contrast_ratio(mixed, back) >= ratio) return mixed;
+  }
+  return {1.0f, 1.0f, 1.0f};
+}
+
+double speed_on_plane(const top_sim::Snapshot& s) { return s.com_velocity.head<2>().norm(); }
+
+double grid_pitch_for(double speed, double base, double current) {
+  constexpr double kFrame = 1.0 / 30.0;  // [s] between frames rviz draws
+  const double needed = 3.0 * speed * kFrame;
+  double pitch = base;
+  while (pitch < needed && pitch < 1e6 * base) pitch *= 10.0;
+  // Keep a coarser pitch until the finer one would be twice as much as needed: a speed near a step does not flip it.
+  if (pitch < current && needed > 0.5 * pitch) return current;
+  return pitch;
+}
+
+std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break) {
   std::string text = name.empty() ? "" : name + ": ";
   if (s.regime == top_sim::Regime::contact_fault) return text + "fault: " + s.fault_message;
   char numbers[64];
   if (s.has_stationary_state)
-    std::snprintf(numbers, sizeof numbers, ", phi %.3f / phi* %.3f", s.phi, s.phi_star);
+    std::snprintf(numbers, sizeof numbers, "phi %.3f / phi* %.3f", s.phi, s.phi_star);
   else
-    std::snprintf(numbers, sizeof numbers, ", phi %.3f", s.phi);
-  return text + top_sim::to_string(s.regime) + ", " + top_sim::to_string(s.contact_mode) + numbers;
+    std::snprintf(numbers, sizeof numbers, "phi %.3f", s.phi);
+  return text + top_sim::to_string(s.regime) + ", " + top_sim::to_string(s.contact_mode) + line_break + numbers + ", v " +
+         speed_text(speed_on_plane(s));
+}
+
+void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                   const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
+  add_plane(frames, stamp, style, out);
+  add_body(top_shape(top), body_colour(s, style.color_by), frames.top, stamp, out);
+  add_tip(s, top, frames.top, stamp, out);
+}
+
+void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                    const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
+  out.markers.push_back(spin_marker(s, frames.top, stamp));
+  add_contact_markers(s, top_shape(top), style, body_colour(s, style.color_by), frames.contact, stamp, out);
 }
 
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
   out.markers.clear();
-  const TopShape shape = top_shape(top);
-  const Rgb colour = body_colour(s, style.color_by);
-  add_plane(frames, stamp, style, out);
-  add_body(shape, colour, frames.top, stamp, out);
-  add_tip_and_spin(s, top, frames.top, stamp, out);
-  add_contact_markers(s, shape, style, colour, frames.contact, stamp, out);
+  fixed_markers(s, top, stamp, frames, style, out);
+  moving_markers(s, top, stamp, frames, style, out);
 }
 
-visualization_msgs::Marker trail_marker(const Trail& path, const ros::Time& stamp, const std::string& plane_frame) {
+visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const ros::Time& stamp,
+                                              const std::string& plane_frame) {
   using visualization_msgs::Marker;
-  Marker trail = marker(plane_frame, stamp, "trail", kTrailMarker, Marker::LINE_STRIP,
-                        {1.0f, 0.78f, 0.0f});
-  trail.scale.x = 0.0015;  // line width [m]
-  trail.points.reserve(path.points().size());
-  for (const Trail::Point& p : path.points()) trail.points.push_back(point(p.position));
-  if (trail.points.size() < 2) trail.action = Marker::DELETE;  // rviz rejects a strip of fewer than two points
-  return trail;
+  Marker m = marker(plane_frame, stamp, "trail", static_cast<int>(chunk.id), Marker::LINE_STRIP, kTrailColour);
+  m.frame_locked = false;  // the plane frame does not move
+  m.scale.x = 0.0015;      // line width [m]
+  m.points.reserve(chunk.points.size());
+  for (const Trail::Point& p : chunk.points) m.points.push_back(point(p.position));
+  if (m.points.size() < 2) m.action = Marker::DELETE;  // rviz rejects a strip of fewer than two points
+  return m;
+}
+
+visualization_msgs::Marker trail_head_marker(const Trail& trail, const Eigen::Vector3d& contact,
+                                             const ros::Time& stamp, const std::string& contact_frame) {
+  using visualization_msgs::Marker;
+  Marker m = marker(contact_frame, stamp, "trail_head", kTrailHeadMarker, Marker::LINE_STRIP, kTrailColour);
+  m.scale.x = 0.0015;
+  if (!trail.empty())
+    for (const Trail::Point& p : trail.chunks().back().points) m.points.push_back(point(p.position - contact));
+  if (m.points.size() >= 2) m.points.push_back(point(Eigen::Vector3d::Zero()));  // up to the contact point
+  if (m.points.size() < 2) m.action = Marker::DELETE;
+  return m;
 }
 
 }  // namespace top_sim_ros

@@ -21,14 +21,32 @@ bool parse_color_by(const std::string& text, ColorBy& out);
 
 struct Rgb {
   float r, g, b;
+  bool operator==(const Rgb& o) const { return r == o.r && g == o.g && b == o.b; }
 };
 
 // The body's colour: by regime (sleeping green, nutating orange, ...) or by contact mode (slipping grey, ...).
 Rgb body_colour(const top_sim::Snapshot& s, ColorBy by);
 
-// The label above a top: "NAME: regime, contact mode, phi 0.270 / phi* 0.270" (phi* when the snapshot has a
-// stationary state); a faulted top shows its fault instead.
-std::string status_text(const std::string& name, const top_sim::Snapshot& s);
+// WCAG 2 contrast ratio of two sRGB colours, from 1 (same luminance) to 21 (black on white).
+double contrast_ratio(Rgb a, Rgb b);
+// What a label is read against: rviz's background (rviz/top_sim.rviz) and the translucent plane square over it.
+Rgb rviz_background();
+Rgb plane_over_background();
+// `c` mixed with white just enough to reach `ratio` against both backgrounds above (label text: 4.5, WCAG AA).
+Rgb readable(Rgb c, double ratio = 4.5);
+
+// A top's state in words: "NAME: regime, contact mode" and "phi 0.270 / phi* 0.270, v 1.2 mm/s" (phi* when the
+// snapshot has a stationary state, v the contact point's speed on the plane), joined by `line_break` (the label
+// above a top: "\n"); a faulted top shows its fault instead.
+std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break = ", ");
+
+// The contact point's speed along the plane [m/s]: the centre of mass's velocity without its normal part.
+double speed_on_plane(const top_sim::Snapshot& s);
+
+// The grid's pitch for a contact point moving at `speed`: `base` times a power of ten, coarse enough that its lines
+// move at most a third of a pitch per frame drawn at 30 Hz (finer lines alias: they seem to stand or run back);
+// `current` is kept until the next finer pitch is comfortably enough (no flicker between two pitches).
+double grid_pitch_for(double speed, double base, double current);
 
 struct MarkerStyle {
   std::string name;                 // the top's name, shown in its label
@@ -37,13 +55,24 @@ struct MarkerStyle {
   int grid_cells = 40;              // lines drawn across the grid's square, centred on the contact point
 };
 
-// The top's markers: body, stripe, stem, tip sphere and spin arrow in the top frame; velocity arrow and label in
-// the contact frame (plane axes, so the arrow keeps its direction on the plane); the grid in the grid frame.
-// One marker per namespace, each with its own fixed small id; every marker frame-locked.
+// The markers that change only with the top's colour, shape or grid pitch: plane, grid, body, stripe, stem and tip
+// sphere. One marker per namespace, each with its own fixed small id; every marker frame-locked.
+void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                   const MarkerStyle& style, visualization_msgs::MarkerArray& out);
+// The markers that change every tick: the spin arrow in the top frame; the velocity arrow and the label in the
+// contact frame (plane axes, so the arrow keeps its direction on the plane).
+void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                    const MarkerStyle& style, visualization_msgs::MarkerArray& out);
+// Both, after clearing `out`.
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);
 
-// The trail (the ~path's poses, in the plane frame) as a LINE_STRIP in namespace "trail".
-visualization_msgs::Marker trail_marker(const Trail& path, const ros::Time& stamp, const std::string& plane_frame);
+// A closed chunk of the trail as a LINE_STRIP in namespace "trail" with the chunk's id, in the plane frame.
+visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const ros::Time& stamp,
+                                              const std::string& plane_frame);
+// The trail's open chunk in namespace "trail_head", in the contact frame (its points relative to `contact`, the
+// contact point at `stamp`): it stays attached to the top between marker ticks, however fast the top moves.
+visualization_msgs::Marker trail_head_marker(const Trail& trail, const Eigen::Vector3d& contact,
+                                             const ros::Time& stamp, const std::string& contact_frame);
 
 }  // namespace top_sim_ros

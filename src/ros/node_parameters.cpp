@@ -103,6 +103,9 @@ void read_display_parameters(ParamReader& p, NodeParameters& n) {
           n.path_resolution, ">= 0 m");
   n.marker_rate = p.number("marker_rate", n.marker_rate);
   require(std::isfinite(n.marker_rate) && n.marker_rate > 0.0, p.where("marker_rate"), n.marker_rate, "> 0 Hz");
+  n.marker_refresh = p.number("marker_refresh", n.marker_refresh);
+  require(std::isfinite(n.marker_refresh) && n.marker_refresh > 0.0, p.where("marker_refresh"), n.marker_refresh,
+          "> 0 s");
   n.path_rate = p.number("path_rate", n.path_rate);
   require(std::isfinite(n.path_rate) && n.path_rate > 0.0, p.where("path_rate"), n.path_rate, "> 0 Hz");
   const std::string color_by = p.text("color_by", "regime");

@@ -54,10 +54,11 @@ struct NodeParameters {
   std::string follow_frame = "follow";  // at the followed top's contact point, plane axes (the camera's target)
   std::string follow;               // the top it follows ("" = the launch-time top)
   double trail_seconds = 60.0;      // [s] of simulated time the trail covers
-  int path_length = 5000;           // poses at most per trail: beyond, its older half is thinned (coverage kept)
+  int path_length = 1000;           // poses at most per trail: beyond, its oldest chunks are merged (coverage kept)
   double path_resolution = 2.0e-4;  // [m] between poses
-  double marker_rate = 30.0;        // [Hz]
-  double path_rate = 10.0;          // [Hz]
+  double marker_rate = 10.0;        // [Hz]
+  double marker_refresh = 10.0;     // [s] every marker is sent again at least this often (a bag from any moment)
+  double path_rate = 0.1;           // [Hz]
   ColorBy color_by = ColorBy::regime;
   double grid_pitch = 0.05;         // [m]
   int grid_cells = 40;

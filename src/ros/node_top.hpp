@@ -5,12 +5,14 @@
 
 #include <chrono>
 #include <cstddef>
+#include <limits>
 #include <memory>
 #include <string>
 
 #include <ros/ros.h>
 
 #include "conversions.hpp"
+#include "marker_stream.hpp"
 #include "top_input.hpp"
 #include "trail.hpp"
 #include "top_sim/pacing.hpp"
@@ -30,7 +32,10 @@ struct TopOutput {
   // next to the trail, where the counts' own allocations are a cache miss per top per tick.
   int state_readers = 0, path_readers = 0;
   Trail trail;              // contact-point trail
+  MarkerStream markers;     // what ~markers has sent of the top
   ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
+  Eigen::Vector3d grid_at = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // as last sent
+  ros::Time grid_stamp;
 };
 
 class NodeTop {

@@ -17,13 +17,16 @@ namespace top_sim_ros {
 
 StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParameters& params, double stamp_origin)
     : params_(params), stamp_origin_(stamp_origin), follow_request_(params.follow) {
-  markers_ = pnh.advertise<visualization_msgs::MarkerArray>("markers", 2);
+  // A new subscriber (rviz, rosbag record) gets every marker at the next tick, the trail's chunks included.
+  markers_ = pnh.advertise<visualization_msgs::MarkerArray>(
+      "markers", 2, [count = marker_subscriptions_](const ros::SingleSubscriberPublisher&) { ++*count; });
   const boost::function<void(const std_msgs::String::ConstPtr&)> follow = [this](const std_msgs::String::ConstPtr& m) {
     on_follow(m->data);
   };
   follow_sub_ = pnh.subscribe<std_msgs::String>("follow", 1, follow);
   states_ = pnh.advertise<top_sim::TopStateArray>("top_states", 10);
   tf_ = nh.advertise<tf2_msgs::TFMessage>("/tf", 100);  // as tf2_ros::TransformBroadcaster does, message kept
+  tf_static_ = nh.advertise<tf2_msgs::TFMessage>("/tf_static", 1, true);  // latched, as tf2's static broadcaster
   if (params_.publish_clock) clock_ = nh.advertise<rosgraph_msgs::Clock>("/clock", 10);
   if (!params_.lcm_url.empty()) open_lcm();
 }
@@ -47,7 +50,6 @@ void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
   out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
                                         subscription_changes_);
   out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_);
-  out.trail.reserve(static_cast<std::size_t>(params_.path_length));
   ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
 }
 
@@ -64,28 +66,21 @@ ros::Time StateOutput::stamp(const NodeTop& top) const {
   return ros::Time(stamp_origin_ + top.stamp_offset() + top.sim().time());
 }
 
-// Marker namespaces carry the top's prefix, so rviz keeps one set per top ("" for the launch-time top).
-void StateOutput::add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
-                              visualization_msgs::MarkerArray& out) const {
+MarkerStyle StateOutput::style(const NodeTop& top) const {
   MarkerStyle style;
   style.name = top.name();
   style.color_by = params_.color_by;
-  style.grid_pitch = params_.grid_pitch;
+  style.grid_pitch = top.output.markers.grid_pitch();
   style.grid_cells = params_.grid_cells;
-  visualization_msgs::MarkerArray one;
-  to_markers(s, top.sim().model().top, stamp, top.frames(), style, one);
-  one.markers.push_back(trail_marker(top.output.trail, stamp, top.frames().plane));
-  for (auto& m : one.markers) {
-    m.ns = top.prefix() + m.ns;
-    out.markers.push_back(std::move(m));
-  }
+  return style;
 }
 
+// Marker namespaces carry the top's prefix, so rviz keeps one set per top ("" for the launch-time top).
 void StateOutput::close(NodeTop& top) {
   std::fill(named_.begin(), named_.end(), nullptr);  // a top spawned later may get the killed one's address
   visualization_msgs::MarkerArray gone;
-  add_markers(top, top.sim().snapshot(), stamp(top), gone);
-  for (auto& m : gone.markers) m.action = visualization_msgs::Marker::DELETE;
+  top.output.markers.remove_all(top.sim().snapshot(), top.sim().model().top, top.frames(), style(top), top.prefix(),
+                                stamp(top), gone);
   markers_.publish(gone);
 }
 
@@ -185,9 +180,23 @@ void StateOutput::add_transforms(NodeTop& top, const top_sim::TopPose& pose, con
   to_transforms(pose, stamp, top.frames(), tf_msg_.transforms[i], tf_msg_.transforms[i + 1]);
   if (markers_watched_) {  // only markers need them: thousands of unwatched tops send two transforms each
     to_contact_transform(pose, stamp, top.frames(), next_transform());
-    to_grid_transform(pose, params_.grid_pitch, stamp, top.frames(), next_transform());
+    add_grid_transform(top, pose, stamp);
   }
   top.output.last_tf_stamp = stamp;
+}
+
+// The grid frame moves in steps of the pitch: sent when it moved, else once a second (tf's lookups of the latest
+// transform look back at most its 10 s cache). A sleeping top's tf is a fifth smaller.
+void StateOutput::add_grid_transform(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp) {
+  geometry_msgs::TransformStamped& grid = next_transform();
+  to_grid_transform(pose, top.output.markers.grid_pitch(), stamp, top.frames(), grid);
+  const Eigen::Vector3d at(grid.transform.translation.x, grid.transform.translation.y, grid.transform.translation.z);
+  if (at == top.output.grid_at && (stamp - top.output.grid_stamp).toSec() < 1.0) {
+    --tf_used_;  // not sent
+    return;
+  }
+  top.output.grid_at = at;
+  top.output.grid_stamp = stamp;
 }
 
 // The top ~follow names: a name asked for on the topic once it is known, else the one followed so far, else the
@@ -215,17 +224,26 @@ NodeTop& StateOutput::followed_top(TopSet& tops) {
   return top ? *top : tops.launch_top();
 }
 
-// follow: at the followed top's contact point with its plane's axes, stamped as that top's tf.
+// follow: the followed top's contact frame under another name, on /tf_static (re-sent when the followed top changes):
+// the camera's target moves with the contact frame, which tf carries every tick anyway.
 void StateOutput::add_follow_transform(TopSet& tops) {
   NodeTop& top = followed_top(tops);
   if (!params_.publish_tf || params_.follow_frame.empty()) return;
   const top_sim::TopPose pose = top.sim().pose();
   if (!top_sim::all_finite(pose)) return;
-  if (!(top.output.last_tf_stamp > last_follow_stamp_)) return;  // a repeated stamp is TF_REPEATED_DATA
-  Frames frames = top.frames();
-  frames.contact = params_.follow_frame;
-  to_contact_transform(pose, top.output.last_tf_stamp, frames, next_transform());
+  if (!markers_watched_ && top.output.last_tf_stamp > last_follow_stamp_)  // else add_transforms sent it
+    to_contact_transform(pose, top.output.last_tf_stamp, top.frames(), next_transform());
   last_follow_stamp_ = top.output.last_tf_stamp;
+  if (top.frames().contact == follow_parent_) return;
+  follow_parent_ = top.frames().contact;
+  tf2_msgs::TFMessage follow;
+  follow.transforms.resize(1);
+  geometry_msgs::TransformStamped& t = follow.transforms[0];
+  t.header.stamp = top.output.last_tf_stamp;
+  t.header.frame_id = follow_parent_;
+  t.child_frame_id = params_.follow_frame;
+  t.transform.rotation.w = 1.0;
+  tf_static_.publish(follow);
 }
 
 // /clock follows the launch-time top, which is never removed and whose time never goes back (reset included).
@@ -240,11 +258,22 @@ void StateOutput::publish_clock(const NodeTop& launch_top) {
 
 void StateOutput::publish_markers(TopSet& tops, double wall) {
   if (wall - last_marker_wall_ < 1.0 / params_.marker_rate || markers_.getNumSubscribers() == 0) return;
+  const bool resend = *marker_subscriptions_ != marker_subscriptions_seen_;
+  marker_subscriptions_seen_ = *marker_subscriptions_;
   visualization_msgs::MarkerArray markers;
+  MarkerTick tick;
+  tick.wall = wall;
+  tick.period = 1.0 / params_.marker_rate;
+  tick.refresh = params_.marker_refresh;
   for (auto& t : tops) {
-    t->output.trail.trim(params_.trail_seconds);
+    TopOutput& out = t->output;
+    out.trail.trim(params_.trail_seconds);
     const top_sim::Snapshot s = t->sim().snapshot();
-    if (top_sim::all_finite(s)) add_markers(*t, s, stamp(*t), markers);
+    if (!top_sim::all_finite(s)) continue;
+    if (resend) out.markers.resend_all();
+    out.markers.follow_speed(top_sim_ros::speed_on_plane(s), params_.grid_pitch);
+    tick.stamp = stamp(*t);
+    out.markers.collect(s, t->sim().model().top, out.trail, t->frames(), style(*t), t->prefix(), tick, markers);
   }
   markers_.publish(markers);
   last_marker_wall_ = wall;

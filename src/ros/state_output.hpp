@@ -61,8 +61,8 @@ class StateOutput {
   void on_follow(const std::string& name) { follow_request_ = name; }
   NodeTop& followed_top(TopSet& tops);
   void add_follow_transform(TopSet& tops);
-  void add_markers(const NodeTop& top, const top_sim::Snapshot& s, const ros::Time& stamp,
-                   visualization_msgs::MarkerArray& out) const;
+  void add_grid_transform(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp);
+  MarkerStyle style(const NodeTop& top) const;
   void publish_markers(TopSet& tops, double wall);
   void publish_paths(TopSet& tops, double wall);
   void publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor, bool paused);
@@ -70,10 +70,14 @@ class StateOutput {
 
   NodeParameters params_;
   double stamp_origin_;
-  ros::Publisher markers_, states_, clock_, tf_;
+  ros::Publisher markers_, states_, clock_, tf_, tf_static_;
   ros::Subscriber follow_sub_;
+  std::string follow_parent_;            // the contact frame the follow frame is attached to on /tf_static
   std::string follow_, follow_request_;  // the followed top's name ("" = launch-time top); a name asked on ~follow
   bool markers_watched_ = false;         // ~markers has subscribers this tick: contact frames are needed
+  // ~markers' subscriptions so far (counted by its connect callback) and as last seen by a marker tick.
+  std::shared_ptr<unsigned> marker_subscriptions_ = std::make_shared<unsigned>(0);
+  unsigned marker_subscriptions_seen_ = 0;
   // Subscription changes of the tops' own topics (shared with the publishers' callbacks) and as last refreshed.
   std::shared_ptr<unsigned> subscription_changes_ = std::make_shared<unsigned>(0);
   unsigned changes_seen_ = 0;

@@ -7,25 +7,29 @@ namespace top_sim_ros {
 
 namespace {
 
-// A tippe top (f < 0): the body is its sphere, centred |f| above the centre of mass (at z = -f), with
-// a short stem on its pole along +f_hat, so that turning over shows.
+// A tippe top (f < 0): the body is its sphere, centred |f| above the centre of mass (at z = -f); the cap round its
+// pole along +f_hat is the stem's place, so that turning over shows without anything outside the sphere.
 TopShape ball_shape(const top_sim::Top& top) {
   const double f = top.com_offset, R = top.tip_radius;
   TopShape s;
   s.body_radius = R;
-  s.stem_radius = 0.2 * R;
-  const double pole = std::sqrt(R * R - s.stem_radius * s.stem_radius);  // where the stem leaves the sphere
-  s.stem_bottom = -f + pole;
-  s.stem_top = -f + 1.5 * R;
+  s.stem_radius = 0.3 * R;
+  const double foot = std::asin(std::sqrt(R * R - s.stem_radius * s.stem_radius) / R);  // the cap's edge
+  s.stem_bottom = -f + R * std::sin(foot);
+  s.stem_top = -f + R;
   s.rim_height = 2.0 * R;
-  constexpr int kArc = 16;  // points on the meridian from the bottom pole to the stem's foot
-  const double end = std::asin(pole / R);
+  constexpr int kArc = 16;  // points on the meridian from the bottom pole to the cap's edge
   for (int i = 0; i <= kArc; ++i) {
-    const double a = -0.5 * M_PI + (end + 0.5 * M_PI) * i / kArc;
+    const double a = -0.5 * M_PI + (foot + 0.5 * M_PI) * i / kArc;
     s.profile.emplace_back(R * std::cos(a), -f + R * std::sin(a));
   }
   s.profile.front().x() = 0.0;  // exactly on the axis: a fan, no degenerate triangles
-  s.profile.emplace_back(0.0, s.stem_bottom);
+  constexpr int kCapArc = 4;
+  for (int i = 0; i <= kCapArc; ++i) {
+    const double a = foot + (0.5 * M_PI - foot) * i / kCapArc;
+    s.cap.emplace_back(R * std::cos(a), -f + R * std::sin(a));
+  }
+  s.cap.back().x() = 0.0;
   return s;
 }
 

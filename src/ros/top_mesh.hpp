@@ -20,10 +20,13 @@ struct TopShape {
   // (r, z) from the axis at the tip-sphere centre (z = -f) round the outside to the axis under the stem:
   // counter-clockwise in the (r, z) half-plane, so revolve() turns it into outward-facing triangles.
   std::vector<Eigen::Vector2d> profile;
+  // A ball-shaped top's stem: the cap of its sphere from the stem's foot to the pole, drawn in another colour (the
+  // physics models only the sphere, so nothing is drawn outside it); empty for an ordinary top (a cylinder).
+  std::vector<Eigen::Vector2d> cap;
 };
 
 // An ordinary top (f >= 0) as above; a tippe top (f < 0, the centre of mass below the sphere's centre) as its sphere
-// with a short stem on the pole along +f_hat (body_radius = R).
+// with the stem's place painted round the pole along +f_hat (body_radius = R).
 TopShape top_shape(const top_sim::Top& top);
 
 // Triangles (three points each, counter-clockwise seen from outside) of `profile` turned about z through `sweep`

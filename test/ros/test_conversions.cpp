@@ -4,6 +4,8 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <limits>
 #include <map>
 #include <set>
@@ -11,6 +13,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "control_layout.hpp"
 #include "conversions.hpp"
 #include "markers.hpp"
 #include "top_mesh.hpp"
@@ -245,18 +248,24 @@ TEST(Markers, BodyColourShowsTheModeOrTheRegime) {
   EXPECT_FALSE(top_sim_ros::parse_color_by("Regime", by));
 }
 
-// The label names the top, its regime and contact mode, phi and (when there is one) phi*; a fault replaces them.
-TEST(Markers, LabelShowsRegimeModeAndPhi) {
+// The label names the top, its regime and contact mode on one line, phi, phi* (when there is one) and the contact
+// point's speed on the plane on the next (in units that keep three digits); a fault replaces them.
+TEST(Markers, LabelShowsRegimeModePhiAndSpeed) {
   top_sim::Snapshot s;
   s.regime = top_sim::Regime::sleeping;
   s.contact_mode = top_sim::ContactMode::slipping;
   s.phi = 0.2701;
   s.has_stationary_state = true;
   s.phi_star = 0.2699;
-  EXPECT_EQ(top_sim_ros::status_text("top", s), "top: sleeping, slipping, phi 0.270 / phi* 0.270");
+  s.com_velocity = Eigen::Vector3d(3e-4, -4e-4, 7.0);  // 0.5 mm/s along the plane; the normal part is not the speed
+  EXPECT_EQ(top_sim_ros::status_text("top", s), "top: sleeping, slipping, phi 0.270 / phi* 0.270, v 0.50 mm/s");
+  EXPECT_EQ(top_sim_ros::status_text("top", s, "\n"), "top: sleeping, slipping\nphi 0.270 / phi* 0.270, v 0.50 mm/s");
   s.has_stationary_state = false;
   s.regime = top_sim::Regime::sliding;
-  EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270");
+  s.com_velocity = Eigen::Vector3d(30.0, -40.0, 0.0);
+  EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270, v 50.0 m/s");
+  s.com_velocity = Eigen::Vector3d(0.0, 0.034, 0.0);
+  EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270, v 3.4 cm/s");
   s.regime = top_sim::Regime::contact_fault;
   s.fault_message = "penetration 2 mm";
   EXPECT_EQ(top_sim_ros::status_text("b", s), "b: fault: penetration 2 mm");
@@ -265,7 +274,68 @@ TEST(Markers, LabelShowsRegimeModeAndPhi) {
   visualization_msgs::MarkerArray a;
   top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
   EXPECT_EQ(find_marker_or_fail(a, "label").text, "b: fault: penetration 2 mm");
+  s.regime = top_sim::Regime::sliding;
+  top_sim_ros::to_markers(s, small_top(), ros::Time(1.0), top_sim_ros::Frames(), style, a);
+  EXPECT_EQ(find_marker_or_fail(a, "label").text, "b: sliding, slipping\nphi 0.270, v 3.4 cm/s") << "two lines";
   EXPECT_EQ(find_marker_or_fail(a, "label").type, visualization_msgs::Marker::TEXT_VIEW_FACING);
+}
+
+// Label text reads on what is behind it: every regime's and mode's label colour has a WCAG contrast ratio of at
+// least 4.5:1 against rviz's background (the one rviz/top_sim.rviz sets) and against the plane square over it,
+// and keeps the hue of its body colour (mixed with white only). The ratio itself: 21 for black on white.
+TEST(Markers, LabelColoursHaveContrastOnTheBackground) {
+  using top_sim_ros::Rgb;
+  EXPECT_NEAR(top_sim_ros::contrast_ratio({0, 0, 0}, {1, 1, 1}), 21.0, 1e-9);
+  EXPECT_NEAR(top_sim_ros::contrast_ratio({0.5f, 0.5f, 0.5f}, {0.5f, 0.5f, 0.5f}), 1.0, 1e-12);
+  std::ifstream rviz(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/../rviz/top_sim.rviz");
+  ASSERT_TRUE(rviz.good());
+  const YAML::Node config = YAML::Load(rviz);
+  const std::string back = config["Visualization Manager"]["Global Options"]["Background Color"].as<std::string>();
+  const Rgb bg = top_sim_ros::rviz_background();
+  char expected[32];
+  std::snprintf(expected, sizeof expected, "%.0f; %.0f; %.0f", 255.0 * bg.r, 255.0 * bg.g, 255.0 * bg.b);
+  EXPECT_EQ(back, expected) << "markers.cpp's background is not rviz/top_sim.rviz's";
+  top_sim::Snapshot s;
+  std::vector<top_sim_ros::Rgb> colours;
+  for (int r = 0; r < top_sim::kRegimeCount; ++r) {
+    s.regime = static_cast<top_sim::Regime>(r);
+    colours.push_back(top_sim_ros::body_colour(s, top_sim_ros::ColorBy::regime));
+  }
+  for (auto mode : {top_sim::ContactMode::slipping, top_sim::ContactMode::rolling, top_sim::ContactMode::flight}) {
+    s.contact_mode = mode;
+    colours.push_back(top_sim_ros::body_colour(s, top_sim_ros::ColorBy::mode));
+  }
+  for (const Rgb& c : colours) {
+    const Rgb text = top_sim_ros::readable(c);
+    EXPECT_GE(top_sim_ros::contrast_ratio(text, bg), 4.5) << c.r << " " << c.g << " " << c.b;
+    EXPECT_GE(top_sim_ros::contrast_ratio(text, top_sim_ros::plane_over_background()), 4.5);
+    // mixed with white: each channel moved the same fraction w towards 1
+    const double w = c.r < 1.0f ? (text.r - c.r) / (1.0 - c.r) : (text.g - c.g) / (1.0 - c.g);
+    EXPECT_GE(w, 0.0);
+    if (c.g < 1.0f) {
+      EXPECT_NEAR(text.g, c.g + w * (1.0 - c.g), 1e-5);
+    }
+    if (c.b < 1.0f) {
+      EXPECT_NEAR(text.b, c.b + w * (1.0 - c.b), 1e-5);
+    }
+  }
+}
+
+// The grid's pitch grows by tens with the contact point's speed so that its lines move at most a third of a pitch
+// per frame at 30 Hz (no aliasing), and comes back only when the finer pitch is twice what is needed.
+TEST(Markers, GridPitchGrowsWithSpeedWithoutFlicker) {
+  const double base = 0.05;
+  EXPECT_EQ(top_sim_ros::grid_pitch_for(0.0, base, base), base);
+  EXPECT_EQ(top_sim_ros::grid_pitch_for(0.4, base, base), base);  // 0.04 m per frame... 3 x 0.4 / 30 = 0.04
+  for (const double v : {0.5, 3.0, 50.0, 700.0}) {
+    const double pitch = top_sim_ros::grid_pitch_for(v, base, base);
+    EXPECT_GE(pitch, 3.0 * v / 30.0) << v;
+    EXPECT_LT(pitch / 10.0, 3.0 * v / 30.0) << v << ": not the finest that is enough";
+    EXPECT_NEAR(std::log10(pitch / base), std::round(std::log10(pitch / base)), 1e-9);
+  }
+  EXPECT_EQ(top_sim_ros::grid_pitch_for(45.0, base, 5.0), 5.0);
+  EXPECT_EQ(top_sim_ros::grid_pitch_for(4.0, base, 5.0), 5.0) << "0.5 m would be only 1.25 x what 4 m/s needs";
+  EXPECT_EQ(top_sim_ros::grid_pitch_for(2.0, base, 5.0), 0.5);
 }
 
 // Nothing drawn on the top is placed in the plane frame from a snapshot (it would trail the top by speed /
@@ -356,7 +426,11 @@ Key key(const Eigen::Vector3d& p) { return {p.x(), p.y(), p.z()}; }
 TEST(TopMesh, BodyIsClosedOutwardAndFinite) {
   const int n = 32;
   for (const top_sim::Top& top : drawn_tops()) {
-    const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
+    top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
+    if (!shape.cap.empty()) {  // a ball: its body and its painted cap are one closed sphere
+      ASSERT_EQ(shape.cap.front(), shape.profile.back());
+      shape.profile.insert(shape.profile.end(), shape.cap.begin() + 1, shape.cap.end());
+    }
     const std::vector<Eigen::Vector3d> tri = top_sim_ros::revolve(shape.profile, n, 0.0, 2.0 * M_PI);
     ASSERT_EQ(tri.size() % 3, 0u);
     ASSERT_GT(tri.size(), 0u);
@@ -417,22 +491,30 @@ const visualization_msgs::Marker* find_marker(const visualization_msgs::MarkerAr
   return nullptr;
 }
 
-// A tippe top (f < 0) is drawn as its sphere (centre |f| above the centre of mass, radius R) with a stem on the pole
-// along +f_hat: turning over shows. Its tip-sphere marker is deleted (the body is that sphere).
-TEST(TopMesh, TippeTopIsItsSphereWithAStem) {
+// A tippe top (f < 0) is drawn as its sphere (centre |f| above the centre of mass, radius R) and nothing else: the
+// stem's place is a cap of the sphere round the pole along +f_hat, in the stem's colour, so turning over shows and,
+// the physics modelling only the sphere, nothing is drawn through the plane in any orientation. Its tip-sphere
+// marker is deleted (the body is that sphere); the body is see-through (its trail runs under it).
+TEST(TopMesh, TippeTopIsItsSphereWithItsStemPainted) {
   const top_sim::Top top = drawn_tops().back();
   ASSERT_LT(top.com_offset, 0.0);
   const top_sim_ros::TopShape shape = top_sim_ros::top_shape(top);
   const Eigen::Vector3d centre(0.0, 0.0, -top.com_offset);
-  for (const Eigen::Vector3d& p : top_sim_ros::revolve(shape.profile, 32, 0.0, 2.0 * M_PI))
-    if (p.z() < shape.stem_bottom - 1e-12) EXPECT_NEAR((p - centre).norm(), top.tip_radius, 1e-12);
+  ASSERT_FALSE(shape.cap.empty());
+  for (const auto* profile : {&shape.profile, &shape.cap})
+    for (const Eigen::Vector3d& p : top_sim_ros::revolve(*profile, 32, 0.0, 2.0 * M_PI))
+      EXPECT_NEAR((p - centre).norm(), top.tip_radius, 1e-12) << "off the sphere";
   EXPECT_NEAR(shape.profile.front().y(), -top.com_offset - top.tip_radius, 1e-15);
-  EXPECT_GT(shape.stem_top, -top.com_offset + top.tip_radius) << "the stem stands out of the sphere";
+  EXPECT_NEAR(shape.cap.back().y(), -top.com_offset + top.tip_radius, 1e-15) << "the cap reaches the pole";
+  EXPECT_EQ(shape.cap.back().x(), 0.0);
   visualization_msgs::MarkerArray a;
   top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), a);
   EXPECT_EQ(find_marker(a, "tip")->action, visualization_msgs::Marker::DELETE);
+  EXPECT_EQ(find_marker(a, "stem")->type, visualization_msgs::Marker::TRIANGLE_LIST);
+  EXPECT_LT(find_marker(a, "body")->color.a, 1.0f);
+  for (const auto& p : find_marker(a, "stem")->points)
+    EXPECT_NEAR((Eigen::Vector3d(p.x, p.y, p.z) - centre).norm(), top.tip_radius, 1e-12);
 }
-
 
 // Body, stripe and stem live in the top frame, locked to it, so tf's plane -> top rotation (spin phase included)
 // turns them; the stripe is a band off the axis on one side (body +x), raised above the body's surface.
@@ -590,4 +672,15 @@ TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
 int main(int argc, char** argv) {
   testing::InitGoogleTest(&argc, argv);
   return RUN_ALL_TESTS();
+}
+
+// The label floats above the top and above top_sim_interactive's controls (control_layout.hpp): two lines of text
+// centred on its position stay clear of the controls' highest point.
+TEST(Markers, LabelIsAboveTheControls) {
+  for (const top_sim::Top& top : drawn_tops()) {
+    visualization_msgs::MarkerArray a;
+    top_sim_ros::to_markers(top_sim::Snapshot(), top, ros::Time(1.0), top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), a);
+    const auto& label = find_marker_or_fail(a, "label");
+    EXPECT_GE(label.pose.position.z - label.scale.z, top_sim_ros::control_layout::kTop) << "mass " << top.mass;
+  }
 }

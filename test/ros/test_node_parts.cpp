@@ -11,6 +11,7 @@
 #include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <map>
 #include <string>
 #include <thread>
 #include <vector>
@@ -18,7 +19,9 @@
 #include "cpu_affinity.hpp"
 #include "node_parameters.hpp"
 #include "top_set.hpp"
+#include "marker_stream.hpp"
 #include "trail.hpp"
+#include "top_sim/scene.hpp"
 
 namespace {
 
@@ -173,50 +176,190 @@ TEST(TopSet, ACostlyTopDoesNotSlowTheOthers) {
   EXPECT_LT(worst_tick, budget + 0.05) << "worst tick " << worst_tick << " s";
 }
 
+// Every point of a trail once, oldest first (a chunk starts at its predecessor's last point).
+std::vector<top_sim_ros::Trail::Point> trail_points(const top_sim_ros::Trail& trail) {
+  std::vector<top_sim_ros::Trail::Point> out;
+  for (const auto& c : trail.chunks())
+    for (std::size_t i = out.empty() ? 0 : 1; i < c.points.size(); ++i) out.push_back(c.points[i]);
+  return out;
+}
+
 // A point is kept when it is path_resolution or more from the newest kept point; steps of 0.1 mm at a resolution of
 // 0.25 mm keep every third point (0, 0.3, 0.6 mm...).
 TEST(Trail, KeepsAPointOnlyWhenTheContactPointMovedTheResolution) {
   top_sim_ros::Trail trail;
   for (int i = 0; i < 10; ++i) trail.add(Eigen::Vector3d(1e-4 * i, 0.0, 0.0), ros::Time(i), 2.5e-4, 100);
-  ASSERT_EQ(trail.points().size(), 4u);
-  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(trail.points()[k].position.x(), 3e-4 * k, 1e-15);
+  const auto points = trail_points(trail);
+  ASSERT_EQ(points.size(), 4u);
+  for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(points[k].position.x(), 3e-4 * k, 1e-15);
 }
 
-// Beyond `length` points the older half is thinned: the oldest point stays, the trail never holds more than
-// length + 1 points, and its storage is the one reserved at the first point (no copy as it grows).
-TEST(Trail, StaysWithinItsLengthKeepsItsStartAndItsStorage) {
-  top_sim_ros::Trail trail;
-  const std::size_t length = 50;
-  trail.add(Eigen::Vector3d::Zero(), ros::Time(1.0), 1e-4, length);
-  const top_sim_ros::Trail::Point* storage = trail.points().data();
-  for (int i = 1; i < 1000; ++i) {
-    trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, length);
-    ASSERT_LE(trail.points().size(), length + 1);
-    ASSERT_EQ(trail.points().data(), storage);
+// Chunks close at kChunkPoints points and join up: each starts at its predecessor's last point, ids increase, and a
+// closed chunk does not change (same version) while points are added after it.
+TEST(Trail, ChunksCloseAtTheirSizeJoinUpAndStayUnchanged) {
+  using top_sim_ros::Trail;
+  Trail trail;
+  const int n = 5 * static_cast<int>(Trail::kChunkPoints);
+  std::vector<std::pair<std::uint64_t, std::uint64_t>> first_seen;  // (id, version) of each chunk when it closed
+  for (int i = 0; i < n; ++i) {
+    trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, 100000);
+    const auto& chunks = trail.chunks();
+    if (chunks.size() >= 2 && first_seen.size() < chunks.size() - 1)
+      first_seen.emplace_back(chunks[chunks.size() - 2].id, chunks[chunks.size() - 2].version);
   }
-  EXPECT_EQ(trail.points().front().stamp, ros::Time(1.0));
-  EXPECT_EQ(trail.points().back().stamp, ros::Time(1000.0));
+  const auto& chunks = trail.chunks();
+  ASSERT_GE(chunks.size(), 5u);
+  for (std::size_t c = 0; c + 1 < chunks.size(); ++c) {
+    EXPECT_EQ(chunks[c].points.size(), Trail::kChunkPoints) << "chunk " << c;
+    EXPECT_LT(chunks[c].id, chunks[c + 1].id);
+    EXPECT_EQ(chunks[c].points.back().stamp, chunks[c + 1].points.front().stamp);
+    EXPECT_EQ(chunks[c].points.back().position, chunks[c + 1].points.front().position);
+    EXPECT_EQ(chunks[c].id, first_seen[c].first);
+    EXPECT_EQ(chunks[c].version, first_seen[c].second) << "a closed chunk changed";
+  }
+  EXPECT_EQ(trail_points(trail).size(), static_cast<std::size_t>(n));
+  EXPECT_EQ(trail.size(), n + chunks.size() - 1) << "size counts the joints twice";
 }
 
-// A trail reserved at its top's spawn holds its path_length points in storage whose pages are already mapped
-// (mincore: resident), so the ticks that fill it take no page faults; adding keeps that storage.
-TEST(Trail, ReservedAtSpawnWithItsPagesMapped) {
+// Beyond `length` points the oldest chunks are merged (every other point kept): the trail stays within
+// length + one chunk, keeps its first and newest points (it still covers its time), its points stay in time
+// order, and its newest chunks keep every point (level 0).
+TEST(Trail, StaysWithinItsLengthKeepsItsEndsAndItsNewestPoints) {
+  using top_sim_ros::Trail;
+  Trail trail;
+  const std::size_t length = 200;
+  for (int i = 0; i < 5000; ++i) {
+    trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, length);
+    ASSERT_LE(trail.size(), length + Trail::kChunkPoints);
+  }
+  const auto points = trail_points(trail);
+  EXPECT_EQ(points.front().stamp, ros::Time(1.0));
+  EXPECT_EQ(points.back().stamp, ros::Time(5000.0));
+  for (std::size_t i = 1; i < points.size(); ++i) ASSERT_LT(points[i - 1].stamp, points[i].stamp);
+  const auto& chunks = trail.chunks();
+  EXPECT_EQ(chunks.back().level, 0);
+  EXPECT_EQ(chunks[chunks.size() - 2].level, 0);
+  for (std::size_t c = 1; c < chunks.size(); ++c) EXPECT_GE(chunks[c - 1].level, chunks[c].level) << "older is coarser";
+}
+
+// trim(seconds) drops whole chunks whose newest point is older than `seconds` before the trail's newest point: the
+// trail covers at least `seconds` and at most one chunk more; clear() empties it.
+TEST(Trail, TrimDropsWholeChunksOlderThanItsTime) {
+  using top_sim_ros::Trail;
+  Trail trail;
+  for (int i = 0; i < 200; ++i) trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, 100000);
+  trail.trim(50.0);
+  const auto points = trail_points(trail);
+  const double newest = points.back().stamp.toSec(), oldest = points.front().stamp.toSec();
+  EXPECT_LE(oldest, newest - 50.0);
+  EXPECT_GT(oldest, newest - 50.0 - Trail::kChunkPoints);
+  EXPECT_GE(trail.chunks().front().points.back().stamp.toSec(), newest - 50.0);
+  trail.clear();
+  EXPECT_TRUE(trail.empty());
+  EXPECT_EQ(trail.size(), 0u);
+}
+
+// What one marker tick of a top sends: {namespace: (ADDs, DELETEs)}.
+using Sent = std::map<std::string, std::pair<int, int>>;
+Sent sent_by(const visualization_msgs::MarkerArray& a) {
+  Sent out;
+  for (const auto& m : a.markers) {
+    auto& [adds, deletes] = out[m.ns];
+    (m.action == visualization_msgs::Marker::DELETE ? deletes : adds) += 1;
+  }
+  return out;
+}
+
+struct StreamFixture {
+  top_sim::Scene scene = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml");
+  top_sim::Snapshot snapshot;
   top_sim_ros::Trail trail;
-  const std::size_t length = 5000;
-  trail.reserve(length);
-  ASSERT_GE(trail.points().capacity(), length + 1);
-  const top_sim_ros::Trail::Point* storage = trail.points().data();
-  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-  const std::uintptr_t first = (reinterpret_cast<std::uintptr_t>(storage) + page - 1) / page * page;
-  const std::uintptr_t last = reinterpret_cast<std::uintptr_t>(storage + trail.points().capacity()) / page * page;
-  ASSERT_GT(last, first);
-  std::vector<unsigned char> resident((last - first) / page);
-  ASSERT_EQ(mincore(reinterpret_cast<void*>(first), last - first, resident.data()), 0);
-  std::size_t mapped = 0;
-  for (unsigned char r : resident) mapped += r & 1u;
-  EXPECT_EQ(mapped, resident.size());
-  for (int i = 0; i < 100; ++i) trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(1.0 + i), 1e-4, length);
-  EXPECT_EQ(trail.points().data(), storage);
+  top_sim_ros::MarkerStream stream;
+  top_sim_ros::MarkerTick tick;
+  int points = 0;
+  StreamFixture() {
+    tick.period = 0.1;
+    tick.refresh = 10.0;
+  }
+  void add(int n) {
+    for (int i = 0; i < n; ++i, ++points)
+      trail.add(Eigen::Vector3d(1e-3 * points, 0.0, 0.0), ros::Time(1.0 + 0.01 * points), 1e-4, 1000);
+  }
+  Sent next() {
+    tick.wall += tick.period;
+    tick.stamp = ros::Time(1.0 + tick.wall);
+    visualization_msgs::MarkerArray a;
+    stream.collect(snapshot, scene.model.top, trail, top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), "", tick, a);
+    return sent_by(a);
+  }
+};
+
+// The first tick sends everything: the fixed markers, the moving ones, every closed chunk of the trail and its
+// open head. After that a tick sends only what changed: a chunk once when it closes, nothing fixed, the head.
+TEST(MarkerStream, SendsEverythingOnceThenWhatChanged) {
+  using top_sim_ros::Trail;
+  StreamFixture f;
+  f.add(3 * Trail::kChunkPoints);  // three closed chunks and a head of 4 points
+  Sent first = f.next();
+  for (const char* ns : {"plane", "grid", "body", "stripe", "stem", "tip", "spin", "velocity", "label", "trail_head"})
+    EXPECT_EQ(first[ns].first, 1) << ns;
+  EXPECT_EQ(first["trail"].first, 3);
+  Sent quiet = f.next();
+  for (const char* ns : {"plane", "grid", "body", "stripe", "stem", "tip", "spin", "velocity", "label", "trail"})
+    EXPECT_EQ(quiet.count(ns), 0u) << ns << " sent again unchanged";
+  EXPECT_EQ(quiet["trail_head"].first, 1);
+  f.add(Trail::kChunkPoints - 2);  // the head (a joint and 2 points) fills up and closes at the next point
+  EXPECT_EQ(f.next()["trail"], std::make_pair(1, 0));
+  f.snapshot.regime = top_sim::Regime::sliding;  // another colour: the fixed markers again
+  Sent recoloured = f.next();
+  EXPECT_EQ(recoloured["body"].first, 1);
+  EXPECT_EQ(recoloured["label"].first, 1);
+}
+
+// Beyond path_length a merge rewrites a chunk and removes its neighbour: one ADD, one DELETE; a cleared trail (a
+// reset) DELETEs every chunk sent; a new subscriber (resend_all) gets every chunk again.
+TEST(MarkerStream, MergedAndClearedChunksAreReplacedAndDeleted) {
+  using top_sim_ros::Trail;
+  StreamFixture f;
+  f.add(1000 + 2);  // 1000 points held at most: the next closes merge
+  f.next();
+  int adds = 0, deletes = 0;
+  for (int k = 0; k < 20; ++k) {
+    f.add(Trail::kChunkPoints - 1);  // one chunk closes per tick
+    const auto trail = f.next()["trail"];
+    adds += trail.first;
+    deletes += trail.second;
+  }
+  EXPECT_NEAR(deletes, 20, 1) << "one chunk merged away per chunk closed";
+  EXPECT_GE(adds, 2 * deletes) << "the new chunk and the merged one";
+  const double refreshes = 20 * f.trail.chunks().size() * f.tick.period / f.tick.refresh;
+  EXPECT_LE(adds, 2 * deletes + 2 + refreshes + 1) << "and a share of the refresh";
+  const std::size_t closed = f.trail.chunks().size() - 1;
+  f.stream.resend_all();
+  Sent again = f.next();
+  EXPECT_EQ(again["trail"].first, static_cast<int>(closed));
+  EXPECT_EQ(again["body"].first, 1);
+  f.trail.clear();
+  EXPECT_EQ(f.next()["trail"].second, static_cast<int>(closed));
+}
+
+// Every closed chunk is sent again within `refresh` seconds (a bag played from any moment shows the whole trail),
+// spread over the ticks: over one refresh period each chunk once, about closed * period / refresh per tick.
+TEST(MarkerStream, RefreshesEveryChunkWithinItsPeriod) {
+  using top_sim_ros::Trail;
+  StreamFixture f;
+  f.add(40 * Trail::kChunkPoints);
+  f.next();
+  const int closed = static_cast<int>(f.trail.chunks().size()) - 1;
+  const int ticks = static_cast<int>(f.tick.refresh / f.tick.period);
+  int most = 0, total = 0;
+  for (int k = 0; k < ticks; ++k) {
+    const int n = f.next()["trail"].first;
+    most = std::max(most, n);
+    total += n;
+  }
+  EXPECT_NEAR(total, closed, 1);
+  EXPECT_LE(most, 1);
 }
 
 // -1 (not pinned) or a CPU online; anything else names the parameter, its value and the range.

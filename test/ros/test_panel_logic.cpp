@@ -88,11 +88,11 @@ TEST(PanelLogic, StatusLineShowsRegimeModePhiAndPacing) {
   s.phi_star = 0.27;
   s.real_time_factor = 0.98;
   s.requested_real_time_factor = 1.0;
-  EXPECT_EQ(top_sim_rviz::status_line(s), "sleeping, slipping, phi 0.270 / phi* 0.270 | real time x0.98 of 1");
+  EXPECT_EQ(top_sim_rviz::status_line(s), "sleeping, slipping, phi 0.270 / phi* 0.270, v 0.00 mm/s | real time x0.98 of 1");
   s.paused = true;
   s.requested_real_time_factor = 0.0;
   EXPECT_EQ(top_sim_rviz::status_line(s),
-            "sleeping, slipping, phi 0.270 / phi* 0.270 | real time x0.98 of as fast as possible | paused");
+            "sleeping, slipping, phi 0.270 / phi* 0.270, v 0.00 mm/s | real time x0.98 of as fast as possible | paused");
   double f = 0.0;
   EXPECT_EQ(top_sim_rviz::parse_real_time_factor("2.5", f), "");
   EXPECT_EQ(f, 2.5);
