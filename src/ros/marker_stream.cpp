@@ -53,7 +53,11 @@ void MarkerStream::collect(const top_sim::Snapshot& s, const top_sim::Top& top, 
   for (auto& m : drawn.markers) add_prefixed(std::move(m), prefix, out);
   collect_moving(s, top, frames, style, prefix, tick, out);
   collect_trail(trail, frames, prefix, tick, out);
-  const visualization_msgs::Marker head = trail_head_marker(trail, s.contact_point, tick.stamp, frames.contact);
+  // Attached when the top would leave the head's end visibly behind before the next tick (2 cm); a slower top's head
+  // stays in the plane, joined to the closed chunks.
+  constexpr double kVisibleGap = 0.02;  // [m]
+  const bool attached = speed_on_plane(s) * tick.period > kVisibleGap;
+  const visualization_msgs::Marker head = trail_head_marker(trail, s.contact_point, tick.stamp, frames, attached);
   if (head.action == visualization_msgs::Marker::ADD || head_sent_) add_prefixed(head, prefix, out);
   head_sent_ = head.action == visualization_msgs::Marker::ADD;
 }
@@ -115,7 +119,7 @@ void MarkerStream::remove_all(const top_sim::Snapshot& s, const top_sim::Top& to
   for (auto& m : drawn.markers) out.markers.push_back(deletion(prefix + m.ns, m.id, m.header.frame_id, stamp));
   for (const auto& [id, version] : chunks_sent_)
     out.markers.push_back(deletion(prefix + "trail", static_cast<int>(id), frames.plane, stamp));
-  add_prefixed(trail_head_marker(Trail(), Eigen::Vector3d::Zero(), stamp, frames.contact), prefix, out);  // DELETE
+  add_prefixed(trail_head_marker(Trail(), Eigen::Vector3d::Zero(), stamp, frames, false), prefix, out);  // DELETE
   chunks_sent_.clear();
 }
 

@@ -31,8 +31,8 @@ constexpr double kStripeWidth = 0.5;     // [rad] of the body's circumference pa
 constexpr double kStripeRaise = 0.02;    // stripe height above the surface, relative to the body radius
 constexpr float kBallAlpha = 0.6f;       // a ball-shaped top is see-through: its trail runs under it at first
 constexpr double kLabelHeight = 0.008;   // [m] of one text line
-constexpr Rgb kPlaneColour{0.30f, 0.33f, 0.40f};  // dark: light label text reads on it and on rviz's background
-constexpr float kPlaneAlpha = 0.45f;
+constexpr Rgb kPlaneColour{0.25f, 0.30f, 0.45f};  // a dark blue: light label text reads on it and on rviz's grey
+constexpr float kPlaneAlpha = 0.6f;
 constexpr Rgb kRvizBackground{48.0f / 255.0f, 48.0f / 255.0f, 48.0f / 255.0f};  // rviz/top_sim.rviz
 constexpr Rgb kTrailColour{1.0f, 0.78f, 0.0f};
 
@@ -74,7 +74,7 @@ void add_plane(const Frames& frames, const ros::Time& stamp, const MarkerStyle& 
   Marker grid = marker(frames.grid, stamp, "grid", kGridMarker, Marker::LINE_LIST, {0.6f, 0.6f, 0.65f});
   grid.pose.position = plane.pose.position;
   grid.pose.position.z = -0.0004;
-  grid.scale.x = 0.04 * pitch;  // line width
+  grid.scale.x = 0.04 * style.grid_line_pitch;  // line width: a coarser grid of a fast top keeps thin lines
   grid.color.a = 0.6f;
   for (int i = 0; i <= style.grid_cells; ++i) {
     const double u = -half + i * pitch;
@@ -295,13 +295,16 @@ visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const r
 }
 
 visualization_msgs::Marker trail_head_marker(const Trail& trail, const Eigen::Vector3d& contact,
-                                             const ros::Time& stamp, const std::string& contact_frame) {
+                                             const ros::Time& stamp, const Frames& frames, bool attached) {
   using visualization_msgs::Marker;
-  Marker m = marker(contact_frame, stamp, "trail_head", kTrailHeadMarker, Marker::LINE_STRIP, kTrailColour);
+  Marker m = marker(attached ? frames.contact : frames.plane, stamp, "trail_head", kTrailHeadMarker,
+                    Marker::LINE_STRIP, kTrailColour);
+  m.frame_locked = attached;
   m.scale.x = 0.0015;
+  const Eigen::Vector3d origin = attached ? contact : Eigen::Vector3d::Zero();
   if (!trail.empty())
-    for (const Trail::Point& p : trail.chunks().back().points) m.points.push_back(point(p.position - contact));
-  if (m.points.size() >= 2) m.points.push_back(point(Eigen::Vector3d::Zero()));  // up to the contact point
+    for (const Trail::Point& p : trail.chunks().back().points) m.points.push_back(point(p.position - origin));
+  if (m.points.size() >= 2) m.points.push_back(point(contact - origin));  // up to the contact point
   if (m.points.size() < 2) m.action = Marker::DELETE;
   return m;
 }

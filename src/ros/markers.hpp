@@ -52,6 +52,7 @@ struct MarkerStyle {
   std::string name;                 // the top's name, shown in its label
   ColorBy color_by = ColorBy::regime;
   double grid_pitch = 0.05;         // [m] between grid lines
+  double grid_line_pitch = 0.05;    // [m] the pitch that sets the lines' width (grid_pitch of a top at rest)
   int grid_cells = 40;              // lines drawn across the grid's square, centred on the contact point
 };
 
@@ -70,9 +71,10 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
 // A closed chunk of the trail as a LINE_STRIP in namespace "trail" with the chunk's id, in the plane frame.
 visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const ros::Time& stamp,
                                               const std::string& plane_frame);
-// The trail's open chunk in namespace "trail_head", in the contact frame (its points relative to `contact`, the
-// contact point at `stamp`): it stays attached to the top between marker ticks, however fast the top moves.
+// The trail's open chunk in namespace "trail_head", up to `contact`, the contact point at `stamp`: in the plane frame,
+// or `attached` in the contact frame (its points relative to `contact`), so that it stays behind a fast top between
+// marker ticks while the camera follows (its start then leaves the closed chunks' end by the distance moved since).
 visualization_msgs::Marker trail_head_marker(const Trail& trail, const Eigen::Vector3d& contact,
-                                             const ros::Time& stamp, const std::string& contact_frame);
+                                             const ros::Time& stamp, const Frames& frames, bool attached);
 
 }  // namespace top_sim_ros

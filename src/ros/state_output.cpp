@@ -71,6 +71,7 @@ MarkerStyle StateOutput::style(const NodeTop& top) const {
   style.name = top.name();
   style.color_by = params_.color_by;
   style.grid_pitch = top.output.markers.grid_pitch();
+  style.grid_line_pitch = params_.grid_pitch;
   style.grid_cells = params_.grid_cells;
   return style;
 }
