@@ -5,17 +5,23 @@
 
 namespace top_sim_ros {
 
+std::vector<Trail::Point> Trail::storage() {
+  if (spare_.empty()) {
+    std::vector<Point> fresh;
+    fresh.reserve(kChunkPoints);
+    return fresh;
+  }
+  std::vector<Point> reused = std::move(spare_.back());
+  spare_.pop_back();
+  reused.clear();
+  return reused;
+}
+
 void Trail::open_chunk() {
   Chunk c;
   c.id = next_id_++;
   c.version = next_version_++;
-  if (!spare_.empty()) {
-    c.points = std::move(spare_.back());
-    spare_.pop_back();
-    c.points.clear();
-  } else {
-    c.points.reserve(kChunkPoints);
-  }
+  c.points = storage();
   if (!chunks_.empty()) {  // the new chunk starts where the closed one ends
     c.points.push_back(chunks_.back().points.back());
     ++points_;
@@ -45,8 +51,7 @@ void Trail::merge_oldest() {
       break;
     }
   Chunk &a = chunks_[i], &b = chunks_[i + 1];
-  std::vector<Point> joined;
-  joined.reserve(kChunkPoints);
+  std::vector<Point> joined = storage();
   joined.push_back(a.points.front());
   const std::size_t na = a.points.size(), n = na + b.points.size() - 1;  // b's first point is a's last
   auto at = [&](std::size_t k) -> const Point& { return k < na ? a.points[k] : b.points[k - na + 1]; };

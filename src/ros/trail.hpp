@@ -45,6 +45,7 @@ class Trail {
   void to_path(const std::string& plane_frame, nav_msgs::Path& out) const;
 
  private:
+  std::vector<Point> storage();  // an empty vector with room for a chunk, reused when one is spare
   void open_chunk();
   void merge_oldest();
   std::deque<Chunk> chunks_;

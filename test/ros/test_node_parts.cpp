@@ -362,6 +362,46 @@ TEST(MarkerStream, RefreshesEveryChunkWithinItsPeriod) {
   EXPECT_LE(most, 1);
 }
 
+// What rviz holds after applying every marker tick (ADD replaces the marker of its namespace and id, DELETE removes
+// it) is the trail itself, tick after tick, through merges, trims and a clear: the closed chunks' points by id and
+// the head's points, joined up to the contact point. The same holds for a bag replayed from its start.
+TEST(MarkerStream, WhatRvizHoldsIsTheTrail) {
+  using top_sim_ros::Trail;
+  StreamFixture f;
+  std::map<std::pair<std::string, int>, visualization_msgs::Marker> held;
+  for (int tick = 0; tick < 400; ++tick) {
+    f.add(tick % 7 == 0 ? 40 : tick % 3);  // bursts and pauses
+    if (tick % 50 == 49) f.trail.trim(0.5);
+    if (tick == 300) f.trail.clear();
+    f.tick.wall += f.tick.period;
+    f.tick.stamp = ros::Time(1.0 + f.tick.wall);
+    visualization_msgs::MarkerArray a;
+    f.stream.collect(f.snapshot, f.scene.model.top, f.trail, top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), "",
+                     f.tick, a);
+    for (const auto& m : a.markers) {
+      if (m.action == visualization_msgs::Marker::DELETE) held.erase({m.ns, m.id});
+      else held[{m.ns, m.id}] = m;
+    }
+    const auto& chunks = f.trail.chunks();
+    std::size_t trail_markers = 0;
+    for (const auto& [key, m] : held) trail_markers += key.first == "trail";
+    ASSERT_EQ(trail_markers, chunks.empty() ? 0 : chunks.size() - 1) << "tick " << tick;
+    for (std::size_t c = 0; c + 1 < chunks.size(); ++c) {
+      const auto it = held.find({"trail", static_cast<int>(chunks[c].id)});
+      ASSERT_NE(it, held.end()) << "tick " << tick << ", chunk " << chunks[c].id;
+      ASSERT_EQ(it->second.points.size(), chunks[c].points.size());
+      for (std::size_t i = 0; i < chunks[c].points.size(); ++i)
+        ASSERT_EQ(it->second.points[i].x, chunks[c].points[i].position.x()) << "tick " << tick;
+    }
+    const auto head = held.find({"trail_head", 9});
+    if (!chunks.empty() && chunks.back().points.size() >= 2) {
+      ASSERT_NE(head, held.end()) << "tick " << tick;
+      ASSERT_EQ(head->second.points.size(), chunks.back().points.size() + 1);
+      EXPECT_EQ(head->second.points.front().x, chunks.back().points.front().position.x());
+    }
+  }
+}
+
 // -1 (not pinned) or a CPU online; anything else names the parameter, its value and the range.
 TEST(NodeParameters, CpuAffinityIsMinusOneOrACpuOnline) {
   const int cpus = top_sim_ros::online_cpus();

@@ -1,0 +1,50 @@
+#!/usr/bin/env python3
+"""The streams of one default top are sized for recording (docs/ros.md, "Recording"; issue 31): with its trail full,
+over 25 s of subscription (which starts with everything sent once to the new subscriber):
+- ~markers at most 40 KB/s (each trail chunk is sent once, fixed markers only on change; before: 3.7 MB/s);
+- ~path at most path_rate messages (0.1 Hz) of at most path_length (1000) poses (before: 10 Hz of 5000);
+- every topic of the node together at most 270 KB/s (rosbag adds about 40 KB/s of its own to the 300 KB/s target).
+Bytes are the messages as serialised (rospy.AnyMsg), the bytes a bag stores."""
+import threading
+import unittest
+
+import rospy
+import rostest
+from nav_msgs.msg import Path
+
+WINDOW = 25.0   # [s] measured
+AGE = 12.0      # [s] of node time first: 1000 poses at about 170 per second fill the trail in 6 s
+TOPICS = ('/top_sim/markers', '/top_sim/path', '/top_sim/top_state', '/top_sim/top_states', '/tf', '/diagnostics')
+
+
+class Bandwidth(unittest.TestCase):
+    def test_streams_are_sized_for_recording(self):
+        rospy.wait_for_message('/top_sim/top_state', rospy.AnyMsg, timeout=60.0)
+        rospy.sleep(AGE)
+        sizes, lock = {t: [] for t in TOPICS}, threading.Lock()
+        poses = []
+
+        def counter(topic):
+            def on(msg):
+                with lock:
+                    sizes[topic].append(len(msg._buff))
+            return on
+        subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=1000) for t in TOPICS]
+        subs.append(rospy.Subscriber('/top_sim/path', Path, lambda p: poses.append(len(p.poses))))
+        rospy.sleep(WINDOW)
+        for s in subs:
+            s.unregister()
+        with lock:
+            rate = {t: sum(v) / WINDOW for t, v in sizes.items()}
+        report = ', '.join('%s %.1f KB/s (%d)' % (t, rate[t] / 1e3, len(sizes[t])) for t in TOPICS)
+        self.assertGreater(len(sizes['/top_sim/top_state']), 0.5 * 200 * WINDOW, 'the node is not streaming: ' + report)
+        self.assertLessEqual(rate['/top_sim/markers'], 40e3, report)
+        self.assertLessEqual(len(poses), int(WINDOW * 0.1) + 1, report)
+        self.assertTrue(all(n <= 1000 for n in poses), poses)
+        self.assertLessEqual(sum(rate.values()), 270e3, report)
+        rospy.loginfo('test_bandwidth: %s', report)
+
+
+if __name__ == '__main__':
+    rospy.init_node('test_bandwidth')
+    rostest.rosrun('top_sim', 'test_bandwidth', Bandwidth)
