@@ -94,6 +94,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/record.test DEPENDENCIES top_sim_node top_sim_bag top_sim_run top_sim_fit
               ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  add_rostest(test/ros/scene_names.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
   add_rostest(test/ros/interactive.test DEPENDENCIES top_sim_node top_sim_interactive ${PROJECT_NAME}_generate_messages_py)
