@@ -24,6 +24,7 @@
 #include "top_sim/Kill.h"
 #include "top_sim/Spawn.h"
 #include "top_sim/TopCommand.h"
+#include "top_sim/scene.hpp"
 
 namespace top_sim_rviz {
 
@@ -60,7 +61,7 @@ QHBoxLayout* field_with_button(QLineEdit* field, QPushButton* b) {
 
 }  // namespace
 
-// The dock of rviz/top_sim.rviz is about 330 px wide and 640 px high: the groups are stacked so that every field
+// The dock of rviz/top_sim.rviz leaves the widget about 330 x 560 px: the groups are stacked so that every field
 // is wider than its text and inclination, spin and Apply come right after the top's state.
 ControlWidget::ControlWidget(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);

@@ -1,5 +1,6 @@
 #include "panel_logic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -153,10 +154,12 @@ std::string listed(const std::vector<std::string>& parts) {
   return out;
 }
 
-// "friction law coulomb with mu 0.35" (the parameters the command gives).
+// "friction law coulomb with mu 0.35" (the parameters the command gives, in the core's table order).
 std::string friction_part(const top_sim::TopCommand& c) {
   std::vector<std::string> given;
-  for (const std::string& name : c.friction_given) {
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+    const std::string name = p.name;
+    if (std::find(c.friction_given.begin(), c.friction_given.end(), name) == c.friction_given.end()) continue;
     double v = 0.0;
 #define TOP_SIM_GET_FIELD(kind_, field, range_) \
     if (name == #field) v = c.field;
