@@ -92,7 +92,7 @@ std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
   error = top_sim::validate(check, top_sim::Model());
   if (!error.empty()) return error;
   if (!blank(f.friction_law)) return friction_command(f, out);
-  if (!out.set_inclination && !out.set_spin) return "nothing to apply: inclination, spin and friction law are empty";
+  if (!out.set_inclination && !out.set_spin) return "no value was typed in and no friction law picked";
   return "";
 }
 
