@@ -1,15 +1,17 @@
 #!/usr/bin/env python3
-"""Prints the 'QMainWindow State' hex for rviz/top_sim.rviz: Displays and Views docked left, Time at the bottom.
+"""Prints the 'QMainWindow State' hex for rviz/top_sim.rviz: Displays, Views and the Top control panel as tabs of
+the left dock, Top control on top (it gets the dock's whole height and fits it without scrolling), Time at the
+bottom.
 
 rviz restores its dock layout from this QMainWindow::saveState() blob; without it, under Xvfb the docks take
 the whole window and the 3D view is 0 px wide. The blob is Qt 5's QDataStream encoding (big-endian), written
 here from the layout we want instead of being saved by hand from a GUI session.
-Usage: scripts/rviz_layout.py [WIDTH HEIGHT [LEFT_DOCK_WIDTH]]   (defaults 1280 800 330)
+Usage: scripts/rviz_layout.py [WIDTH HEIGHT [LEFT_DOCK_WIDTH]]   (defaults 1280 800 340)
 """
 import struct
 import sys
 
-LEFT, BOTTOM, TOP = 0, 3, 2            # QInternal::DockPosition
+LEFT, TOP, BOTTOM = 0, 2, 3            # QInternal::DockPosition
 VERTICAL, HORIZONTAL = 2, 1            # Qt::Orientation
 MENU_H, TOOLBAR_H, STATUS_H, TIME_H, SEP = 22, 40, 29, 57, 4   # rviz's widget heights under Xvfb [px]
 
@@ -37,19 +39,27 @@ def dock_area(position, width, height, orientation, items):
     return i32(position) + i32(width) + i32(height) + u8(0xfc) + u8(orientation) + i32(len(items)) + b''.join(items)
 
 
+def tab_group(pos, size, orientation, current, items):
+    # A nested item holding tabbed docks (what QMainWindow::tabifyDockWidget makes): SequenceMarker, pos, size,
+    # min and max, then the group: TabMarker, the index of the tab on top, orientation, item count, items.
+    return (u8(0xfc) + i32(pos) + i32(size) + i32(0) + i32(0)
+            + u8(0xfa) + i32(current) + u8(orientation) + i32(len(items)) + b''.join(items))
+
+
 def main():
     width = int(sys.argv[1]) if len(sys.argv) > 1 else 1280
     height = int(sys.argv[2]) if len(sys.argv) > 2 else 800
-    left_w = int(sys.argv[3]) if len(sys.argv) > 3 else 330
+    left_w = int(sys.argv[3]) if len(sys.argv) > 3 else 340
     body_h = height - MENU_H - TOOLBAR_H - STATUS_H      # between the toolbar and the status bar
     upper_h = body_h - TIME_H - SEP                      # left dock and 3D view
-    displays_h = int(upper_h * 0.62)
-    views_h = upper_h - displays_h - SEP
     central_w = width - left_w - SEP
+    # Displays, Views and Top control as tabs of the left dock, Top control on top: the panel gets the dock's
+    # whole height and fits it without scrolling, and the 3D view keeps the window's width less one dock.
+    tabs = [dock_item(name, 0, upper_h) for name in ('Displays', 'Views', 'Top control')]
+    left = i32(LEFT) + i32(left_w) + i32(upper_h) + u8(0xfc) + u8(VERTICAL) + i32(1) + tab_group(
+        0, upper_h, VERTICAL, 2, tabs)
 
-    docks = (u8(0xfd) + i32(2)
-             + dock_area(LEFT, left_w, upper_h, VERTICAL,
-                         [dock_item('Displays', 0, displays_h), dock_item('Views', displays_h + SEP, views_h)])
+    docks = (u8(0xfd) + i32(2) + left
              + dock_area(BOTTOM, width, TIME_H, HORIZONTAL, [dock_item('Time', 0, width)])
              + i32(central_w) + i32(upper_h)
              + i32(4) + i32(4) + i32(8) + i32(8))    # corners: top-left/right to Top, bottom ones to Bottom

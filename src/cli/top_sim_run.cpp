@@ -23,8 +23,9 @@
 namespace {
 
 const char* kUsage =
-    "usage: top_sim_run SCENE.yaml [--duration S] [--csv FILE] [--rate HZ] [--summary FILE|-]\n"
+    "usage: top_sim_run SCENE [--duration S] [--csv FILE] [--rate HZ] [--summary FILE|-]\n"
     "                   [--lcm URL [--lcm-channel NAME]] [--quiet] [--progress]\n"
+    "  SCENE           a scene file (a path: contains '/' or ends in .yaml) or a shipped scene's name, e.g. tippe_top\n"
     "  --duration S    simulated seconds (default: the scene's duration)\n"
     "  --csv FILE      write the state at --rate samples per simulated second\n"
     "  --rate HZ       sample rate of the CSV and of --lcm (default 100)\n"
@@ -126,10 +127,10 @@ void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, do
 }
 #endif
 
-// The scene, its warnings on stderr; false (after the message) when it is bad.
+// The scene (a file or a shipped scene's name), its warnings on stderr; false (after the message) when it is bad.
 bool load(const std::string& path, top_sim::Scene& scene) {
   try {
-    scene = top_sim::load_scene(path);
+    scene = top_sim::load_scene(top_sim::scene_path(path));
   } catch (const top_sim::SceneError& e) {
     std::cerr << "top_sim_run: bad scene: " << e.what() << "\n";
     return false;

@@ -7,7 +7,6 @@
 #include <yaml-cpp/yaml.h>
 
 #include <cmath>
-#include <filesystem>
 #include <memory>
 #include <mutex>
 
@@ -44,21 +43,11 @@ YAML::Node to_yaml(const py::handle& value) {
   return YAML::Node(py::str(value).cast<std::string>());
 }
 
-bool is_file(const std::string& path) {
-  std::error_code ec;
-  return std::filesystem::is_regular_file(path, ec);
-}
-
-// A path, a scene name of the data directory ("default" -> <config>/scenes/default.yaml), or a dict.
+// A path, a shipped scene's name ("default" -> <config>/scenes/default.yaml; the core's scene_path), or a dict.
 Scene scene_from(const py::object& source) {
   if (py::isinstance<Scene>(source)) return source.cast<Scene>();
   if (py::isinstance<py::dict>(source)) return parse_scene(to_yaml(source), "<dict>", default_config_dir());
-  const std::string text = py::str(source).cast<std::string>();  // also pathlib.Path
-  if (!is_file(text) && text.find('/') == std::string::npos && text.find(".yaml") == std::string::npos) {
-    const std::string named = default_config_dir() + "/scenes/" + text + ".yaml";
-    if (is_file(named)) return load_scene(named);
-  }
-  return load_scene(text);
+  return load_scene(scene_path(py::str(source).cast<std::string>()));  // also pathlib.Path
 }
 
 // ---- values -----------------------------------------------------------------------------------------------

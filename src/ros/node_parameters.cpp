@@ -172,7 +172,9 @@ top_sim::Scene read_node_scene(ParamReader& p, const std::string& config_dir) {
   if (!file.empty() && inline_scene)
     throw ParameterError("the scene comes from one place: " + p.where("scene_file") + " = '" + file + "' and " +
                          p.where("scene") + " are both set; keep one");
-  if (!file.empty()) return top_sim::load_scene(file);
+  // roslaunch runs the node in ~/.ros: a relative path is the caller's, whose directory top_sim.launch passes.
+  const std::string caller_dir = p.text("caller_dir", "");
+  if (!file.empty()) return top_sim::load_scene(top_sim::scene_path(file, config_dir, caller_dir));
   if (!inline_scene) {
     if (config_dir.empty())
       throw ParameterError("no scene: set " + p.where("scene_file") + " (a scene file) or " + p.where("scene") +

@@ -78,7 +78,8 @@ int read_cpu_affinity(ParamReader& params);
 // The node's own parameters; throws ParameterError.
 NodeParameters read_node_parameters(ParamReader& params);
 
-// The launch-time scene: ~scene_file (read by load_scene, as top_sim_run reads it) or ~scene (YAML text, read
+// The launch-time scene: ~scene_file (a file or a shipped scene's name, top_sim::scene_path, read by load_scene as
+// top_sim_run reads it; a relative path is taken from ~caller_dir when set) or ~scene (YAML text, read
 // with the same checks; or a map of parameters, which rosparam has already de-duplicated). At most one of them;
 // neither = the default scene of `config_dir` (an error when config_dir is empty).
 // Throws top_sim::SceneError (bad scene) or ParameterError (bad source).

@@ -201,6 +201,8 @@ class TopSimNode {
   }
 
   // ---- services -----------------------------------------------------------------------------------------------
+  static std::string tops_count(std::size_t n) { return std::to_string(n) + (n == 1 ? " top" : " tops"); }
+
   // "" or why not: a new top `name` on `scene`, starting at the node's current simulated time.
   std::string spawn(const std::string& name, const top_sim::Scene& scene) {
     const std::string bad = tops_.check_new_name(name);
@@ -225,7 +227,7 @@ class TopSimNode {
     }
     res.success = res.message.empty();
     if (res.success) {
-      res.message = "spawned top " + req.name + " (" + std::to_string(tops_.size()) + " tops)";
+      res.message = "spawned top '" + req.name + "' (" + tops_count(tops_.size()) + " now)";
       ROS_INFO("top_sim_node: %s", res.message.c_str());
     } else {
       ROS_WARN("top_sim_node: spawn '%s' refused: %s", req.name.c_str(), res.message.c_str());
@@ -241,7 +243,7 @@ class TopSimNode {
     } else if (std::unique_ptr<NodeTop> top = tops_.remove(req.name)) {
       output_->close(*top);
       res.success = true;
-      res.message = "killed top " + req.name + " (" + std::to_string(tops_.size()) + " tops left)";
+      res.message = "killed top '" + req.name + "' (" + tops_count(tops_.size()) + " left)";
     } else {
       res.message = "no top named '" + req.name + "' (~list gives the names)";
     }
@@ -270,10 +272,10 @@ class TopSimNode {
     res.success = true;
     std::ostringstream os;
     if (tops_.size() == 1)
-      os << "reset top " << tops_.launch_top().name() << " to its start";
+      os << "reset top '" << tops_.launch_top().name() << "' to its start";
     else
       os << "reset " << tops_.size() << " tops to their starts";
-    os << " at t = " << t << " s (time keeps running forward)";
+    os << " at t = " << t << " s; time keeps running forward";
     res.message = os.str();
     ROS_INFO("top_sim_node: %s", res.message.c_str());
     return true;

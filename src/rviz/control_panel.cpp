@@ -1,7 +1,6 @@
 #include "control_panel.hpp"
 
 #include <QComboBox>
-#include <algorithm>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -9,12 +8,14 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QStackedWidget>
 #include <QVBoxLayout>
 #include <fstream>
 #include <sstream>
 
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <pluginlib/class_list_macros.hpp>
+#include <ros/package.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -23,6 +24,7 @@
 #include "top_sim/Kill.h"
 #include "top_sim/Spawn.h"
 #include "top_sim/TopCommand.h"
+#include "top_sim/scene.hpp"
 
 namespace top_sim_rviz {
 
@@ -32,41 +34,145 @@ QPushButton* button(const char* text, QWidget* parent) { return new QPushButton(
 
 std::string text_of(const QLineEdit* field) { return field->text().trimmed().toStdString(); }
 
-// A service call's outcome as one line: its message, or why the call did not happen.
+// A service call's outcome as one sentence: its answer, or why the call did not happen.
 template <class Srv>
 std::string call(const std::string& name, Srv& srv) {
-  if (!ros::service::call(name, srv)) return "service " + name + " did not answer (is the node running?)";
-  return srv.response.message.empty() ? std::string(srv.response.success ? "done" : "refused")
-                                      : srv.response.message;
+  const bool answered = ros::service::call(name, srv);
+  return service_message(name, answered, srv.response.success, srv.response.message);
+}
+
+// A form that fits a narrow dock: labels beside their fields, fields as wide as the dock, small margins.
+QFormLayout* form_of(QWidget* box) {
+  auto* form = new QFormLayout(box);
+  form->setFieldGrowthPolicy(QFormLayout::AllNonFixedFieldsGrow);
+  form->setRowWrapPolicy(QFormLayout::DontWrapRows);
+  form->setContentsMargins(6, 4, 6, 4);
+  form->setVerticalSpacing(4);
+  return form;
+}
+
+// A field and its button on one row, the field taking the width the button leaves.
+QHBoxLayout* field_with_button(QLineEdit* field, QPushButton* b) {
+  auto* row = new QHBoxLayout();
+  row->addWidget(field, 1);
+  row->addWidget(b);
+  return row;
 }
 
 }  // namespace
 
+// The dock of rviz/top_sim.rviz leaves the widget about 330 x 560 px: the groups are stacked so that every field
+// is wider than its text and inclination, spin and Apply come right after the top's state.
 ControlWidget::ControlWidget(QWidget* parent) : QWidget(parent) {
   auto* layout = new QVBoxLayout(this);
-  layout->addWidget(build_tops());
-  layout->addWidget(build_motion());
-  layout->addWidget(build_friction());
+  layout->setContentsMargins(0, 0, 0, 0);
+  layout->setSpacing(4);
+  layout->addWidget(build_top());
+  layout->addWidget(build_change());
   layout->addWidget(build_run());
+  layout->addWidget(build_spawn());
   message_label_ = new QLabel(this);
-  message_label_->setWordWrap(true);
+  message_label_->setWordWrap(true);  // a long answer wraps inside the dock, never behind a scroll bar
+  message_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
   layout->addWidget(message_label_);
   layout->addStretch();
   subscribe();
 }
 
-QWidget* ControlWidget::build_tops() {
+// A field that shows the picked top's value until the user types in it (FollowedField).
+QLineEdit* ControlWidget::followed_field(FollowedField& follow, const char* placeholder, QWidget* parent) {
+  auto* field = new QLineEdit(parent);
+  field->setPlaceholderText(placeholder);
+  connect(field, &QLineEdit::textEdited, this, [&follow](const QString& text) { follow.typed(text.toStdString()); });
+  return field;
+}
+
+QWidget* ControlWidget::build_top() {
   auto* box = new QGroupBox("Top", this);
-  auto* form = new QFormLayout(box);
+  auto* form = form_of(box);
   tops_ = new QComboBox(box);
   tops_->addItem(kLaunchTopName);
-  status_ = new QLabel("no state yet", box);
+  status_ = new QLabel("No state received yet.", box);
   status_->setWordWrap(true);
   form->addRow("top", tops_);
   form->addRow("state", status_);
+  connect(tops_, QOverload<int>::of(&QComboBox::activated), this, &ControlWidget::pick_top);
+  return box;
+}
+
+// Inclination, spin and friction law of the picked top: the fields show its values; what the user typed is sent.
+QWidget* ControlWidget::build_change() {
+  auto* box = new QGroupBox("Change the picked top", this);
+  auto* form = form_of(box);
+  inclination_ = followed_field(inclination_follow_, "alpha, |alpha| < pi/2", box);
+  spin_ = followed_field(spin_follow_, "shell spin", box);
+  form->addRow("inclination [rad]", inclination_);
+  form->addRow("spin [rad/s]", spin_);
+  law_ = new QComboBox(box);
+  law_->addItem("");  // keep the law in force
+  for (const std::string& law : law_names()) law_->addItem(QString::fromStdString(law));
+  form->addRow("friction law", law_);
+  form->addRow(build_friction_parameters(box));
+  QPushButton* apply_button = button("Apply to the picked top", box);
+  form->addRow(apply_button);
+  connect(law_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ControlWidget::show_law);
+  connect(apply_button, &QPushButton::clicked, this, &ControlWidget::apply);
+  connect(inclination_, &QLineEdit::returnPressed, this, &ControlWidget::apply);
+  connect(spin_, &QLineEdit::returnPressed, this, &ControlWidget::apply);
+  show_law(0);
+  return box;
+}
+
+// One page per entry of the law box: its parameters side by side (empty: the value in force is kept).
+QWidget* ControlWidget::build_friction_parameters(QWidget* parent) {
+  law_pages_ = new QStackedWidget(parent);
+  auto* keep = new QLabel("The law in force is kept.", law_pages_);
+  keep->setEnabled(false);
+  law_pages_->addWidget(keep);
+  for (const std::string& law : law_names()) {
+    auto* page = new QWidget(law_pages_);
+    auto* row = new QHBoxLayout(page);
+    row->setContentsMargins(0, 0, 0, 0);
+    for (const std::string& p : law_parameters(law)) {
+      auto* field = new QLineEdit(page);
+      field->setPlaceholderText("in force");
+      field->setMinimumWidth(50);
+      parameters_[p] = field;
+      row->addWidget(new QLabel(QString::fromStdString(p), page));
+      row->addWidget(field, 1);
+    }
+    law_pages_->addWidget(page);
+  }
+  return law_pages_;
+}
+
+QWidget* ControlWidget::build_run() {
+  auto* box = new QGroupBox("Run", this);
+  auto* form = form_of(box);
+  pause_ = button("Pause", box);
+  QPushButton* reset_button = button("Reset", box);
+  auto* buttons = new QHBoxLayout();
+  buttons->addWidget(pause_);
+  buttons->addWidget(reset_button);
+  form->addRow(buttons);
+  rtf_ = followed_field(rtf_follow_, "0 = fast as possible", box);
+  QPushButton* rtf_button = button("Set", box);
+  form->addRow("real-time factor", field_with_button(rtf_, rtf_button));
+  connect(pause_, &QPushButton::clicked, this, &ControlWidget::toggle_pause);
+  connect(reset_button, &QPushButton::clicked, this, &ControlWidget::reset);
+  connect(rtf_button, &QPushButton::clicked, this, &ControlWidget::set_real_time_factor);
+  connect(rtf_, &QLineEdit::returnPressed, this, &ControlWidget::set_real_time_factor);
+  return box;
+}
+
+QWidget* ControlWidget::build_spawn() {
+  auto* box = new QGroupBox("Spawn and kill", this);
+  auto* form = form_of(box);
   spawn_name_ = new QLineEdit(box);
+  spawn_name_->setPlaceholderText("name of the new top");
   spawn_file_ = new QLineEdit(box);
-  spawn_file_->setPlaceholderText("scene file (empty: the node's scene)");
+  spawn_file_->setPlaceholderText("empty: the node's scene");
+  spawn_file_->setToolTip("A shipped scene's name (e.g. tippe_top) or a scene file's path; empty: the node's scene.");
   auto* row = new QHBoxLayout();
   QPushButton* spawn_button = button("Spawn", box);
   QPushButton* kill_button = button("Kill picked", box);
@@ -75,61 +181,8 @@ QWidget* ControlWidget::build_tops() {
   form->addRow("new top", spawn_name_);
   form->addRow("scene", spawn_file_);
   form->addRow(row);
-  connect(tops_, QOverload<int>::of(&QComboBox::activated), this, &ControlWidget::pick_top);
   connect(spawn_button, &QPushButton::clicked, this, &ControlWidget::spawn);
   connect(kill_button, &QPushButton::clicked, this, &ControlWidget::kill);
-  return box;
-}
-
-QWidget* ControlWidget::build_motion() {
-  auto* box = new QGroupBox("Inclination and spin", this);
-  auto* form = new QFormLayout(box);
-  inclination_ = new QLineEdit(box);
-  inclination_->setPlaceholderText("alpha [rad], |alpha| < pi/2");
-  spin_ = new QLineEdit(box);
-  spin_->setPlaceholderText("shell spin [rad/s]");
-  form->addRow("inclination", inclination_);
-  form->addRow("spin", spin_);
-  return box;
-}
-
-QWidget* ControlWidget::build_friction() {
-  auto* box = new QGroupBox("Friction law", this);
-  auto* form = new QFormLayout(box);
-  law_ = new QComboBox(box);
-  law_->addItem("");  // keep the law in force
-  for (const std::string& law : law_names()) law_->addItem(QString::fromStdString(law));
-  form->addRow("law", law_);
-  for (const std::string& law : law_names())
-    for (const std::string& p : law_parameters(law)) {
-      auto* field = new QLineEdit(box);
-      field->setPlaceholderText("in force");
-      parameters_[p] = field;
-      form->addRow(QString::fromStdString(p), field);
-    }
-  QPushButton* apply_button = button("Apply to the picked top", box);
-  form->addRow(apply_button);
-  connect(law_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ControlWidget::show_law);
-  connect(apply_button, &QPushButton::clicked, this, &ControlWidget::apply);
-  show_law(0);
-  return box;
-}
-
-QWidget* ControlWidget::build_run() {
-  auto* box = new QGroupBox("Run", this);
-  auto* row = new QHBoxLayout(box);
-  pause_ = button("Pause", box);
-  QPushButton* reset_button = button("Reset", box);
-  rtf_ = new QLineEdit(box);
-  rtf_->setPlaceholderText("real-time factor");
-  QPushButton* rtf_button = button("Set", box);
-  row->addWidget(pause_);
-  row->addWidget(reset_button);
-  row->addWidget(rtf_);
-  row->addWidget(rtf_button);
-  connect(pause_, &QPushButton::clicked, this, &ControlWidget::toggle_pause);
-  connect(reset_button, &QPushButton::clicked, this, &ControlWidget::reset);
-  connect(rtf_button, &QPushButton::clicked, this, &ControlWidget::set_real_time_factor);
   return box;
 }
 
@@ -156,21 +209,18 @@ void ControlWidget::show_message(const std::string& text) {
   message_label_->setText(QString::fromStdString(text));
 }
 
-void ControlWidget::show_law(int) {
-  const std::vector<std::string> used = law_parameters(law_->currentText().toStdString());
-  for (auto& [name, field] : parameters_)
-    field->setEnabled(std::find(used.begin(), used.end(), name) != used.end());
-}
+void ControlWidget::show_law(int index) { law_pages_->setCurrentIndex(index); }
 
+// Only what the user typed is sent (the other fields show the top's values); what was sent follows the top again.
 void ControlWidget::apply() {
   PanelFields f;
-  f.inclination = text_of(inclination_);
-  f.spin = text_of(spin_);
+  if (inclination_follow_.edited()) f.inclination = text_of(inclination_);
+  if (spin_follow_.edited()) f.spin = text_of(spin_);
   f.friction_law = law_->currentText().toStdString();
   for (const std::string& p : law_parameters(f.friction_law)) f.friction[p] = text_of(parameters_[p]);
   top_sim::TopCommand c;
   const std::string error = to_command(f, c);
-  if (!error.empty()) return show_message(error);  // nothing is sent
+  if (!error.empty()) return show_message(refused_message(error));  // nothing is sent
   const std::string topic = top_name_of(node_, top(), "command");
   auto it = commands_.find(topic);
   if (it == commands_.end()) {
@@ -178,7 +228,9 @@ void ControlWidget::apply() {
     ros::WallDuration(0.3).sleep();  // let the node connect before the first (latched) message
   }
   it->second.publish(c);
-  show_message("sent to " + topic);
+  if (c.set_inclination) inclination_follow_.applied();
+  if (c.set_spin) spin_follow_.applied();
+  show_message(sent_message(c, top()));
 }
 
 void ControlWidget::toggle_pause() {
@@ -198,23 +250,33 @@ void ControlWidget::reset() {
 void ControlWidget::set_real_time_factor() {
   double factor = 0.0;
   const std::string error = parse_real_time_factor(text_of(rtf_), factor);
-  if (!error.empty()) return show_message(error);
+  if (!error.empty()) return show_message(sentence("The real-time factor was not set: " + error));
   dynamic_reconfigure::Reconfigure srv;
   dynamic_reconfigure::DoubleParameter p;
   p.name = "real_time_factor";
   p.value = factor;
   srv.request.config.doubles.push_back(p);
   const std::string name = node_ + "/set_parameters";
-  show_message(ros::service::call(name, srv) ? "real_time_factor set" : "service " + name + " did not answer");
+  if (!ros::service::call(name, srv)) return show_message(service_message(name, false, false, ""));
+  rtf_follow_.applied();
+  show_message("The real-time factor is set to " + field_text(factor, -1) +
+               (factor == 0.0 ? " (as fast as possible)." : "."));
 }
 
+// The scene field takes what top_sim_run and scene:= take: a shipped scene's name or a file (the core's rule).
 void ControlWidget::spawn() {
   top_sim::Spawn srv;
   srv.request.name = text_of(spawn_name_);
-  const std::string file = text_of(spawn_file_);
-  if (!file.empty()) {
+  const std::string given = text_of(spawn_file_);
+  if (!given.empty()) {
+    std::string file;
+    try {
+      file = top_sim::scene_path(given, ros::package::getPath("top_sim") + "/config");
+    } catch (const top_sim::SceneError& e) {
+      return show_message(sentence(std::string("Nothing was spawned: ") + e.what()));
+    }
     std::ifstream in(file);
-    if (!in) return show_message("scene file = '" + file + "': cannot be read");
+    if (!in) return show_message("Nothing was spawned: the scene file " + file + " cannot be read.");
     std::ostringstream text;
     text << in.rdbuf();
     srv.request.scene = text.str();
@@ -248,24 +310,38 @@ void ControlWidget::on_states(const top_sim::TopStateArray::ConstPtr& states) {
     tops_->setCurrentIndex(keep >= 0 ? keep : 0);
   }
   for (std::size_t i = 0; i < states->names.size() && i < states->states.size(); ++i)
-    if (states->names[i] == top()) {
-      paused_ = states->states[i].paused;
-      pause_->setText(paused_ ? "Resume" : "Pause");
-      status_->setText(QString::fromStdString(status_line(states->states[i])));
-    }
+    if (states->names[i] == top()) show_state(states->states[i]);
+}
+
+void ControlWidget::show_state(const top_sim::TopState& s) {
+  paused_ = s.paused;
+  pause_->setText(paused_ ? "Resume" : "Pause");
+  status_->setText(QString::fromStdString(status_line(s)));
+  const auto follow = [](QLineEdit* field, const FollowedField& f, double value) {
+    const std::optional<std::string> text = f.follow(value, field->hasFocus());
+    if (text && field->text().toStdString() != *text) field->setText(QString::fromStdString(*text));
+  };
+  follow(inclination_, inclination_follow_, s.alpha);
+  follow(spin_, spin_follow_, s.spin);
+  follow(rtf_, rtf_follow_, s.requested_real_time_factor);
 }
 
 ControlPanel::ControlPanel(QWidget* parent) : rviz::Panel(parent) {
   auto* layout = new QVBoxLayout(this);
+  layout->setContentsMargins(4, 4, 4, 4);
   auto* row = new QHBoxLayout();
   node_ = new QLineEdit("/top_sim", this);
   row->addWidget(new QLabel("node", this));
   row->addWidget(node_);
   layout->addLayout(row);
   widget_ = new ControlWidget(this);
-  auto* scroll = new QScrollArea(this);  // the dock may be shorter than the panel: scroll, do not grow the window
+  // A dock shorter than the panel (a smaller window) scrolls rather than growing the window; never sideways: the
+  // fields take the dock's width and the texts wrap.
+  auto* scroll = new QScrollArea(this);
   scroll->setWidget(widget_);
   scroll->setWidgetResizable(true);
+  scroll->setFrameShape(QFrame::NoFrame);
+  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
   layout->addWidget(scroll);
   connect(node_, &QLineEdit::editingFinished, this, [this] {
     widget_->set_node(node_->text().trimmed().toStdString());

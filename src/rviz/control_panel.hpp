@@ -9,12 +9,14 @@
 #include <ros/ros.h>
 #include <rviz/panel.h>
 
+#include "panel_logic.hpp"
 #include "top_sim/TopStateArray.h"
 
 class QComboBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
+class QStackedWidget;
 
 namespace top_sim_rviz {
 
@@ -44,19 +46,22 @@ class ControlWidget : public QWidget {
   void toggle_pause();   // ~pause
   void reset();          // ~reset
   void set_real_time_factor();  // dynamic_reconfigure's real_time_factor
-  void spawn();          // ~spawn: the name, the scene file's text ("" = the node's scene)
+  void spawn();          // ~spawn: the name, the text of a scene file or shipped scene ("" = the node's scene)
   void kill();           // ~kill the picked top
   void pick_top(int index);  // follow it with the camera (~follow)
   void show_law(int index);  // enable the picked law's parameter fields
 
  private:
   void on_states(const top_sim::TopStateArray::ConstPtr& states);
+  void show_state(const top_sim::TopState& state);  // the picked top's: status line and followed fields
   void subscribe();
   void show_message(const std::string& text);
-  QWidget* build_motion();
-  QWidget* build_friction();
+  QLineEdit* followed_field(FollowedField& follow, const char* placeholder, QWidget* parent);
+  QWidget* build_top();
+  QWidget* build_change();
+  QWidget* build_friction_parameters(QWidget* parent);
   QWidget* build_run();
-  QWidget* build_tops();
+  QWidget* build_spawn();
 
   std::string node_ = "/top_sim";
   std::string message_;
@@ -69,7 +74,9 @@ class ControlWidget : public QWidget {
   QLineEdit *inclination_ = nullptr, *spin_ = nullptr, *rtf_ = nullptr, *spawn_name_ = nullptr,
             *spawn_file_ = nullptr;
   QComboBox* law_ = nullptr;
+  QStackedWidget* law_pages_ = nullptr;  // the picked law's parameters only: one row, not one row per parameter
   std::map<std::string, QLineEdit*> parameters_;
+  FollowedField inclination_follow_, spin_follow_{1}, rtf_follow_;
   QPushButton* pause_ = nullptr;
   QLabel *status_ = nullptr, *message_label_ = nullptr;
 };

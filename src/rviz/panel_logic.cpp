@@ -1,5 +1,6 @@
 #include "panel_logic.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
@@ -91,7 +92,7 @@ std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
   error = top_sim::validate(check, top_sim::Model());
   if (!error.empty()) return error;
   if (!blank(f.friction_law)) return friction_command(f, out);
-  if (!out.set_inclination && !out.set_spin) return "nothing to apply: inclination, spin and friction law are empty";
+  if (!out.set_inclination && !out.set_spin) return "no value was typed in and no friction law picked";
   return "";
 }
 
@@ -131,6 +132,74 @@ std::string parse_real_time_factor(const std::string& text, double& value) {
   if (!std::isfinite(value) || value < 0.0)
     return top_sim::range_message("real_time_factor", value, ">= 0 and finite (0 = as fast as possible)");
   return "";
+}
+
+std::string sentence(const std::string& text) {
+  const std::size_t first = text.find_first_not_of(" \t\n");
+  if (first == std::string::npos) return "";
+  std::string out = text.substr(first, text.find_last_not_of(" \t\n") + 1 - first);
+  if (out[0] >= 'a' && out[0] <= 'z') out[0] = static_cast<char>(out[0] - 'a' + 'A');
+  const char last = out.back();
+  if (last != '.' && last != '!' && last != '?') out += '.';
+  return out;
+}
+
+namespace {
+
+// "a", "a and b", "a, b and c".
+std::string listed(const std::vector<std::string>& parts) {
+  std::string out;
+  for (std::size_t i = 0; i < parts.size(); ++i)
+    out += (i == 0 ? "" : i + 1 == parts.size() ? " and " : ", ") + parts[i];
+  return out;
+}
+
+// "friction law coulomb with mu 0.35" (the parameters the command gives, in the core's table order).
+std::string friction_part(const top_sim::TopCommand& c) {
+  std::vector<std::string> given;
+  for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
+    const std::string name = p.name;
+    if (std::find(c.friction_given.begin(), c.friction_given.end(), name) == c.friction_given.end()) continue;
+    double v = 0.0;
+#define TOP_SIM_GET_FIELD(kind_, field, range_) \
+    if (name == #field) v = c.field;
+    TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_GET_FIELD)
+#undef TOP_SIM_GET_FIELD
+    given.push_back(name + " " + top_sim::format_number(v));
+  }
+  return "friction law " + c.friction_law + (given.empty() ? " with its parameters in force" : " with " + listed(given));
+}
+
+}  // namespace
+
+std::string sent_message(const top_sim::TopCommand& c, const std::string& top) {
+  std::vector<std::string> parts;
+  if (c.set_inclination) parts.push_back("inclination " + top_sim::format_number(c.inclination) + " rad");
+  if (c.set_spin) parts.push_back("spin " + top_sim::format_number(c.spin) + " rad/s");
+  if (c.set_friction) parts.push_back(friction_part(c));
+  return "Sent to top '" + top + "': " + listed(parts) + ".";
+}
+
+std::string refused_message(const std::string& error) { return sentence("Nothing was sent: " + error); }
+
+std::string service_message(const std::string& service, bool answered, bool success, const std::string& answer) {
+  if (!answered) return "The service " + service + " did not answer; is the node running?";
+  if (blank(answer)) return success ? "Done." : "Refused.";
+  return sentence(answer);
+}
+
+std::string field_text(double value, int decimals) {
+  if (decimals < 0) return top_sim::format_number(value);
+  char text[64];
+  std::snprintf(text, sizeof text, "%.*f", decimals, value);
+  return text;
+}
+
+void FollowedField::typed(const std::string& text) { edited_ = !blank(text); }
+
+std::optional<std::string> FollowedField::follow(double value, bool has_focus) const {
+  if (has_focus || edited_ || !std::isfinite(value)) return std::nullopt;
+  return field_text(value, decimals_);
 }
 
 std::string inclination_from_ring(double alpha_now, double w, double x, double, double, double& alpha) {

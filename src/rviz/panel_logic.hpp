@@ -4,6 +4,7 @@
 #pragma once
 
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -40,6 +41,39 @@ std::string status_line(const top_sim::TopState& s);
 
 // A real-time factor typed in the panel: "" or the error (>= 0 and finite, 0 = as fast as possible).
 std::string parse_real_time_factor(const std::string& text, double& value);
+
+// ---- What the panel says: plain sentences, word-wrapped under the fields ----------------------------------------
+// `text` as a sentence: first letter capitalised, a full stop at the end ("paused" -> "Paused.").
+std::string sentence(const std::string& text);
+// After Apply: "Sent to top 'b': inclination 0.2 rad, spin 150 rad/s and friction law coulomb with mu 0.35."
+std::string sent_message(const top_sim::TopCommand& c, const std::string& top);
+// Apply refused by the panel's checks: "Nothing was sent: inclination = 'abc': must be a number."
+std::string refused_message(const std::string& error);
+// A service call's outcome: its answer as a sentence ("Done." or "Refused." when it gave none), or that the
+// service did not answer.
+std::string service_message(const std::string& service, bool answered, bool success, const std::string& answer);
+
+// ---- Fields that follow the picked top -----------------------------------------------------------------------
+// A value as a field shows it: `decimals` < 0 the shortest text that reads back as the same double (an alpha
+// sent as 0.15 shows "0.15"), else fixed with that many decimals (a spin that keeps changing).
+std::string field_text(double value, int decimals);
+
+// A field that shows the picked top's value (alpha, spin, requested real-time factor) unless the user is editing
+// it: while it has the keyboard focus, and while it holds text typed and not yet applied. The widget reports
+// focus and edits and shows what follow() returns; only edited fields are sent.
+class FollowedField {
+ public:
+  explicit FollowedField(int decimals = -1) : decimals_(decimals) {}
+  void typed(const std::string& text);  // the user changed the text (not the panel); blank = follow again
+  void applied() { edited_ = false; }   // its value was sent: show the top's again
+  bool edited() const { return edited_; }
+  // The text to show for the top's `value`, or nothing: keep the field's text (the user's).
+  std::optional<std::string> follow(double value, bool has_focus) const;
+
+ private:
+  int decimals_;
+  bool edited_ = false;
+};
 
 // The interactive markers (top_sim_interactive): a ring about the plane's x axis tilts the plane, a handle along
 // the plane's normal sets the spin. Both return "" or the core's error for the resulting value (nothing is sent).

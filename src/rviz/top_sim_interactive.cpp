@@ -33,14 +33,35 @@ geometry_msgs::Pose rest_pose() {
   return p;
 }
 
-InteractiveMarkerControl control(const std::string& name, int mode, double w, double x, double y, double z) {
+// `description`: rviz shows it on hover and draws it as the button of a MENU control without markers; rviz logs an
+// ERROR for every empty one, so each control says what it does.
+InteractiveMarkerControl control(const std::string& name, const std::string& description, int mode, double w,
+                                 double x, double y, double z) {
   InteractiveMarkerControl c;
   c.name = name;
+  c.description = description;
   c.interaction_mode = mode;
   c.orientation.w = w;
   c.orientation.x = x;
   c.orientation.y = y;
   c.orientation.z = z;
+  return c;
+}
+
+// The menu's own handle, a small sphere at the ring's centre: with a marker of its own rviz does not draw the
+// description as a floating text button beside the top.
+InteractiveMarkerControl menu_button(const std::string& top, double scale) {
+  InteractiveMarkerControl c = control("menu", "Right-click for the menu of top " + top +
+                                                   ": Pause, Resume, Reset and Kill.",
+                                       InteractiveMarkerControl::MENU, 1.0, 0.0, 0.0, 0.0);
+  c.always_visible = true;
+  visualization_msgs::Marker sphere;
+  sphere.type = visualization_msgs::Marker::SPHERE;
+  sphere.scale.x = sphere.scale.y = sphere.scale.z = 0.25 * scale;
+  sphere.color.r = sphere.color.g = sphere.color.b = 0.8f;
+  sphere.color.a = 1.0f;
+  sphere.pose.orientation.w = 1.0;
+  c.markers.push_back(sphere);
   return c;
 }
 
@@ -95,11 +116,11 @@ class InteractiveTops {
     m.scale = 0.04;
     m.pose = rest_pose();
     const double r = std::sqrt(0.5);  // control orientations: their x axis is the axis they act along
-    m.controls.push_back(control("tilt", InteractiveMarkerControl::ROTATE_AXIS, 1.0, 0.0, 0.0, 0.0));  // plane x
-    m.controls.push_back(control("spin", InteractiveMarkerControl::MOVE_AXIS, r, 0.0, -r, 0.0));       // normal
-    InteractiveMarkerControl menu = control("menu", InteractiveMarkerControl::MENU, 1.0, 0.0, 0.0, 0.0);
-    menu.always_visible = true;
-    m.controls.push_back(menu);
+    m.controls.push_back(control("tilt", "Turn the ring and release to tilt the plane of top " + top + ".",
+                                 InteractiveMarkerControl::ROTATE_AXIS, 1.0, 0.0, 0.0, 0.0));  // plane x
+    m.controls.push_back(control("spin", "Drag the arrow and release to change the spin of top " + top + ".",
+                                 InteractiveMarkerControl::MOVE_AXIS, r, 0.0, -r, 0.0));  // normal
+    m.controls.push_back(menu_button(top, m.scale));
     server_.insert(m, [this](const InteractiveMarkerFeedback::ConstPtr& f) { on_feedback(f); });
     menu_.apply(server_, m.name);
     shown_.insert(top);

@@ -162,6 +162,29 @@ TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
 
 namespace {
 
+// A shipped scene by name runs the scene file of that name (found next to the core library, as installed); an
+// unknown name is exit 2 with the shipped names listed.
+TEST(Cli, ShippedSceneByNameIsItsFile) {
+  const std::string args = " --duration 0.2 --summary -";
+  const CliResult by_name = run_cli("tippe_top" + args);
+  ASSERT_EQ(by_name.exit_code, 0) << by_name.err;
+  const CliResult by_path = run_cli("'" + top_sim_test::scene_path("tippe_top") + "'" + args);
+  ASSERT_EQ(by_path.exit_code, 0) << by_path.err;
+  pt::ptree a, b;
+  std::istringstream ia(by_name.out), ib(by_path.out);
+  pt::read_json(ia, a);
+  pt::read_json(ib, b);
+  std::ostringstream fa, fb;
+  pt::write_json(fa, a.get_child("final"));
+  pt::write_json(fb, b.get_child("final"));
+  EXPECT_EQ(fa.str(), fb.str());
+  const CliResult unknown = run_cli("no_such_scene --duration 0.2");
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.err;
+  EXPECT_TRUE(contains(unknown.err, "no_such_scene: no shipped scene has this name")) << unknown.err;
+  for (const auto& entry : std::filesystem::directory_iterator(top_sim_test::config_dir() + "/scenes"))
+    EXPECT_TRUE(contains(unknown.err, entry.path().stem().string())) << unknown.err;
+}
+
 // Issue 11: a directory as the scene is exit 2 (it aborted); output that cannot be written is exit 1 (it was 0).
 TEST(Cli, DirectoryAsSceneExitsTwo) {
   const CliResult r = run_cli("'" + top_sim_test::config_dir() + "'");

@@ -2,6 +2,7 @@
 // value and the allowed range.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -258,6 +259,46 @@ TEST(SceneText, SameChecksAsAFile) {
                                                         "spawn e", top_sim_test::config_dir());
   EXPECT_EQ(spun.initial.spin, 123.5);
   EXPECT_EQ(spun.source, "spawn e");
+}
+
+}  // namespace
+
+namespace {
+
+// scene_path: the one rule for a scene argument (top_sim_run, the node's ~scene_file, top_sim.launch's scene:=).
+TEST(ScenePath, NamesArePathsInConfigScenesAndPathsStayPaths) {
+  const std::string config = top_sim_test::config_dir();
+  const std::vector<std::string> shipped = top_sim::shipped_scene_names(config);
+  ASSERT_FALSE(shipped.empty());
+  for (const std::string& name : shipped) {
+    const std::string path = top_sim::scene_path(name, config);
+    EXPECT_EQ(path, config + "/scenes/" + name + ".yaml");
+    EXPECT_TRUE(std::filesystem::is_regular_file(path)) << path;
+  }
+  EXPECT_TRUE(std::is_sorted(shipped.begin(), shipped.end()));
+  // A path: contains '/' or ends in .yaml / .yml; relative ones are taken from the caller's directory if given.
+  EXPECT_EQ(top_sim::scene_path("/abs/x.yaml", config, "/caller"), "/abs/x.yaml");
+  EXPECT_EQ(top_sim::scene_path("sub/x", config, "/caller"), "/caller/sub/x");
+  EXPECT_EQ(top_sim::scene_path("x.yml", config, "/caller"), "/caller/x.yml");
+  EXPECT_EQ(top_sim::scene_path("x.yaml", config), "x.yaml");
+}
+
+TEST(ScenePath, AnUnknownNameListsEveryShippedScene) {
+  const std::string config = top_sim_test::config_dir();
+  try {
+    top_sim::scene_path("no_such_scene", config);
+    ADD_FAILURE() << "an unknown scene name was accepted";
+  } catch (const top_sim::SceneError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(e.file, "no_such_scene");
+    std::size_t listed = 0;
+    for (const auto& entry : std::filesystem::directory_iterator(config + "/scenes")) {
+      if (entry.path().extension() != ".yaml") continue;
+      ++listed;
+      EXPECT_NE(message.find(entry.path().stem().string()), std::string::npos) << entry.path() << ": " << message;
+    }
+    EXPECT_GE(listed, 1u);
+  }
 }
 
 }  // namespace

@@ -2,6 +2,8 @@
 the node's, drawn around each top), no TF display drawing overlapping world/plane labels and a second z arrow at the
 stem, the camera on the follow frame, every top's markers, the control panel and the interactive markers."""
 import os
+import subprocess
+import sys
 
 import yaml
 
@@ -21,3 +23,16 @@ def test_shipped_rviz_config():
     assert displays['rviz/InteractiveMarkers']['Update Topic'] == '/top_sim_interactive/update'
     assert manager['Views']['Current']['Target Frame'] == 'follow'
     assert any(p['Class'] == 'top_sim/ControlPanel' for p in config['Panels'])
+
+
+def test_window_layout_is_rviz_layout_s_with_the_panel_docked():
+    """The dock layout is scripts/rviz_layout.py's for the config's window size (Displays, Views and the Top control
+    panel as tabs of the left dock, the panel on top; test/ros/test_panel_widget.cpp checks the panel fits it)."""
+    with open(CONFIG) as f:
+        geometry = yaml.safe_load(f)['Window Geometry']
+    script = os.path.join(os.path.dirname(CONFIG), '..', 'scripts', 'rviz_layout.py')
+    wanted = subprocess.run([sys.executable, script, str(geometry['Width']), str(geometry['Height'])],
+                            capture_output=True, text=True, check=True).stdout.strip()
+    assert geometry['QMainWindow State'] == wanted
+    assert (geometry['Width'], geometry['Height']) == (1280, 800)
+    assert 'Top control'.encode('utf-16-be').hex() in wanted

@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """top_sim_interactive: per top a marker on /top_sim_interactive/update; releasing the ring turned 0.1 rad about the
 plane's x axis tilts the plane by 0.1 rad, the arrow dragged 1 cm adds 20 rad/s of spin, the menu's Pause pauses;
-a turn past pi/2 is refused (nothing sent)."""
+a turn past pi/2 is refused (nothing sent). Every control of every top's marker, the launch-time top's and a spawned
+one's, has a description: rviz logs an ERROR for an empty one (and draws a MENU control's as its text)."""
 import math
 import sys
 import time
@@ -9,9 +10,24 @@ import unittest
 
 import rospy
 import rostest
-from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerUpdate
+from visualization_msgs.msg import InteractiveMarkerFeedback, InteractiveMarkerInit, InteractiveMarkerUpdate
+from visualization_msgs.msg import Marker
+
+from top_sim.srv import Kill, Spawn
 
 from top_sim.msg import TopState
+
+
+def empty_texts(marker):
+    """Where rviz would show an empty text for this interactive marker: its description, a control's description
+    (rviz's tooltip, and the text of a MENU control without markers), a text marker of a control."""
+    empty = [] if marker.description.strip() else [marker.name]
+    for i, c in enumerate(marker.controls):
+        if not c.description.strip():
+            empty.append('%s control %d (%s)' % (marker.name, i, c.name))
+        empty += ['%s control %s marker %d' % (marker.name, c.name, j) for j, m in enumerate(c.markers)
+                  if m.type in (Marker.TEXT_VIEW_FACING,) and not m.text.strip()]
+    return empty
 
 MARKER = 'top/controls'
 
@@ -46,6 +62,30 @@ class Interactive(unittest.TestCase):
         f.pose.position.x = 0.05
         f.pose.position.z = 0.03 + lift  # the rest pose (0.05, 0, 0.03) + the drag
         self.feedback.publish(f)
+
+    def markers_when(self, pred, timeout=30.0):
+        """The server's full set of markers (update_full, latched, sent on every change) once pred holds."""
+        end = time.time() + timeout
+        while time.time() < end:
+            init = rospy.wait_for_message('/top_sim_interactive/update_full', InteractiveMarkerInit, timeout=timeout)
+            markers = {m.name: m for m in init.markers}
+            if pred(markers):
+                return markers
+            time.sleep(0.2)
+        self.fail('no update_full with the markers wanted within %g s' % timeout)
+
+    def test_0_every_control_has_a_description(self):
+        markers = self.markers_when(lambda ms: MARKER in ms)
+        self.assertEqual(len(markers[MARKER].controls), 3)
+        self.assertEqual(empty_texts(markers[MARKER]), [])
+        rospy.wait_for_service('/top_sim/spawn', timeout=30.0)
+        self.assertTrue(rospy.ServiceProxy('/top_sim/spawn', Spawn)('second', '').success)
+        try:
+            markers = self.markers_when(lambda ms: 'second/controls' in ms)
+            self.assertEqual(empty_texts(markers['second/controls']), [])
+        finally:
+            rospy.ServiceProxy('/top_sim/kill', Kill)('second')
+        self.markers_when(lambda ms: 'second/controls' not in ms)
 
     def test_1_marker_then_ring_arrow_menu(self):
         update = rospy.wait_for_message('/top_sim_interactive/update', InteractiveMarkerUpdate, timeout=30.0)

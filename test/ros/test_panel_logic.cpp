@@ -2,6 +2,8 @@
 // checks, the status line. No master needed.
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "panel_logic.hpp"
 #include "top_sim/friction.hpp"
 
@@ -30,7 +32,8 @@ TEST(PanelLogic, MotionFieldsBecomeACommandAndBadTextNamesFieldAndRange) {
   f.inclination = "1.6";  // the core's rule, not a copy of it
   EXPECT_NE(top_sim_rviz::to_command(f, c).find("inclination = 1.6: must be finite with |alpha| < pi/2"),
             std::string::npos);
-  EXPECT_NE(top_sim_rviz::to_command(PanelFields(), c).find("nothing to apply"), std::string::npos);
+  EXPECT_EQ(top_sim_rviz::refused_message(top_sim_rviz::to_command(PanelFields(), c)),
+            "Nothing was sent: no value was typed in and no friction law picked.");
 }
 
 TEST(PanelLogic, FrictionFieldsGiveOnlyWhatIsFilledIn) {
@@ -98,4 +101,56 @@ TEST(PanelLogic, StatusLineShowsRegimeModePhiAndPacing) {
   EXPECT_EQ(f, 2.5);
   EXPECT_NE(top_sim_rviz::parse_real_time_factor("-1", f).find("real_time_factor = -1: must be >= 0"),
             std::string::npos);
+}
+
+// What the panel says is plain sentences: capitalised, a full stop, what was sent to which top.
+TEST(PanelLogic, MessagesAreSentences) {
+  EXPECT_EQ(top_sim_rviz::sentence("paused"), "Paused.");
+  EXPECT_EQ(top_sim_rviz::sentence("  reset top 'top' to its start at t = 3 s; time keeps running forward \n"),
+            "Reset top 'top' to its start at t = 3 s; time keeps running forward.");
+  EXPECT_EQ(top_sim_rviz::sentence("Done."), "Done.");
+  EXPECT_EQ(top_sim_rviz::sentence(" "), "");
+  PanelFields f;
+  f.inclination = "0.2";
+  f.spin = "150";
+  top_sim::TopCommand c;
+  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_EQ(top_sim_rviz::sent_message(c, "b"), "Sent to top 'b': inclination 0.2 rad and spin 150 rad/s.");
+  f.friction_law = "linearized";
+  f.friction["mu0"] = "0.25";
+  f.friction["k"] = "1";
+  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_EQ(top_sim_rviz::sent_message(c, "top"),
+            "Sent to top 'top': inclination 0.2 rad, spin 150 rad/s and friction law linearized with mu0 0.25 and "
+            "k 1.");
+  EXPECT_EQ(top_sim_rviz::refused_message("inclination = 'abc': must be a number"),
+            "Nothing was sent: inclination = 'abc': must be a number.");
+  EXPECT_EQ(top_sim_rviz::service_message("/top_sim/reset", false, false, ""),
+            "The service /top_sim/reset did not answer; is the node running?");
+  EXPECT_EQ(top_sim_rviz::service_message("/top_sim/pause", true, true, ""), "Done.");
+  EXPECT_EQ(top_sim_rviz::service_message("/top_sim/kill", true, false, "no top named 'x'"), "No top named 'x'.");
+}
+
+// A field follows the picked top's value until the user edits it: focus or typed text keeps the user's text,
+// Apply (or clearing the text) hands it back to the top's value.
+TEST(PanelLogic, FieldsFollowTheTopUnlessEdited) {
+  top_sim_rviz::FollowedField alpha;  // exact: a value sent as 0.15 reads back as "0.15"
+  EXPECT_EQ(alpha.follow(0.1, false).value_or("kept"), "0.1");
+  EXPECT_EQ(alpha.follow(0.15, false).value_or("kept"), "0.15");  // e.g. an inclination sent by topic
+  EXPECT_FALSE(alpha.follow(0.2, true).has_value()) << "a field with the focus keeps its text";
+  alpha.typed("0.3");
+  EXPECT_TRUE(alpha.edited());
+  EXPECT_FALSE(alpha.follow(0.2, false).has_value()) << "typed and not applied: the user's text stays";
+  alpha.applied();
+  EXPECT_FALSE(alpha.edited());
+  EXPECT_EQ(alpha.follow(0.3, false).value_or("kept"), "0.3");
+  alpha.typed("0.25");
+  alpha.typed("  ");  // cleared: nothing to send, follow the top again
+  EXPECT_FALSE(alpha.edited());
+  EXPECT_EQ(alpha.follow(0.3, false).value_or("kept"), "0.3");
+  EXPECT_FALSE(alpha.follow(std::nan(""), false).has_value()) << "no NaN shown";
+  top_sim_rviz::FollowedField spin(1);  // a spin that keeps changing: one decimal
+  EXPECT_EQ(spin.follow(199.8765, false).value_or("kept"), "199.9");
+  EXPECT_EQ(top_sim_rviz::field_text(-150.0, 1), "-150.0");
+  EXPECT_EQ(top_sim_rviz::field_text(2.5, -1), "2.5");
 }

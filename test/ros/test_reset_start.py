@@ -40,7 +40,7 @@ class ResetStart(unittest.TestCase):
         rospy.wait_for_service('/top_sim/reset', timeout=10.0)
         r = rospy.ServiceProxy('/top_sim/reset', Trigger)()
         self.assertTrue(r.success, r.message)
-        self.assertIn('reset top top to its start', r.message)
+        self.assertIn("reset top 'top' to its start", r.message)
         # The first state after the reset (the inclination is no longer 0.05): alpha is the launch value exactly, the
         # spin within 1 % of the launch value 150 rad/s (not the scene's 200; friction slows it by < 1 % in a second).
         m = wait_state('/top_sim/top_state', lambda m: abs(m.alpha - 0.05) > 1e-12)
