@@ -54,7 +54,7 @@ target_link_libraries(top_sim_rviz top_sim_panel_logic ${rviz_LIBRARIES} ${plugi
 # Interactive markers for every top (a ring tilts the plane, a handle sets the spin, a menu): its own node.
 find_package(interactive_markers REQUIRED)
 add_executable(top_sim_interactive src/rviz/top_sim_interactive.cpp)
-target_include_directories(top_sim_interactive PRIVATE ${interactive_markers_INCLUDE_DIRS})
+target_include_directories(top_sim_interactive PRIVATE ${interactive_markers_INCLUDE_DIRS} ${CMAKE_CURRENT_SOURCE_DIR}/src/ros)
 target_link_libraries(top_sim_interactive top_sim_panel_logic ${interactive_markers_LIBRARIES})
 install(TARGETS top_sim_interactive RUNTIME DESTINATION ${CATKIN_PACKAGE_BIN_DESTINATION})
 install(TARGETS top_sim_panel_logic top_sim_rviz

@@ -13,6 +13,7 @@
 #include <set>
 #include <string>
 
+#include "control_layout.hpp"
 #include "panel_logic.hpp"
 #include "top_sim/Kill.h"
 #include "top_sim/TopCommand.h"
@@ -27,8 +28,8 @@ using visualization_msgs::InteractiveMarkerFeedback;
 // Where the controls rest in the top's contact frame: beside the top (plane +x), small, not over its body or label.
 geometry_msgs::Pose rest_pose() {
   geometry_msgs::Pose p;
-  p.position.x = 0.05;
-  p.position.z = 0.03;
+  p.position.x = top_sim_ros::control_layout::kOffsetX;
+  p.position.z = top_sim_ros::control_layout::kHeight;
   p.orientation.w = 1.0;
   return p;
 }
@@ -113,7 +114,7 @@ class InteractiveTops {
     m.name = top + "/controls";
     m.description = top + ": ring tilts the plane, arrow sets the spin (1 cm = " +
                     std::to_string(static_cast<int>(top_sim_rviz::kSpinPerMetre / 100.0)) + " rad/s)";
-    m.scale = 0.04;
+    m.scale = top_sim_ros::control_layout::kScale;
     m.pose = rest_pose();
     const double r = std::sqrt(0.5);  // control orientations: their x axis is the axis they act along
     m.controls.push_back(control("tilt", "Turn the ring and release to tilt the plane of top " + top + ".",
