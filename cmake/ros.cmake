@@ -53,6 +53,9 @@ target_include_directories(top_sim_rviz PUBLIC ${rviz_INCLUDE_DIRS} ${pluginlib_
 target_link_libraries(top_sim_rviz top_sim_panel_logic ${rviz_LIBRARIES} ${pluginlib_LIBRARIES} Qt5::Widgets)
 # Interactive markers for every top (a ring tilts the plane, a handle sets the spin, a menu): its own node.
 find_package(interactive_markers REQUIRED)
+add_executable(trail_bench bench/ros/trail_bench.cpp)  # what a trail add costs (docs/node_benchmark.md)
+target_link_libraries(trail_bench top_sim_ros)
+
 add_executable(top_sim_interactive src/rviz/top_sim_interactive.cpp)
 target_include_directories(top_sim_interactive PRIVATE ${interactive_markers_INCLUDE_DIRS} ${CMAKE_CURRENT_SOURCE_DIR}/src/ros)
 target_link_libraries(top_sim_interactive top_sim_panel_logic ${interactive_markers_LIBRARIES})

@@ -1,10 +1,12 @@
 // What a node's trails cost per tick (issue 31): TOPS trails fed in turn, one contact point per top per tick as
 // StateOutput::publish_top adds them, trimmed at every 20th tick as a 10 Hz marker tick would. The contact points
 // come from a CSV of top_sim_run (columns contact_x, contact_y, contact_z), each top offset in time. Prints the CPU
-// time per add; under valgrind --tool=callgrind the instruction counts compare builds exactly:
-//   g++ -O2 -DNDEBUG -I src/ros bench/trail_bench.cpp src/ros/trail.cpp -lrostime -o /tmp/trail_bench
+// time per add; under valgrind --tool=callgrind the instruction counts compare builds exactly (the catkin build has
+// it as devel/lib/top_sim/trail_bench; another commit's trail by hand, its trail.{hpp,cpp} from git show in DIR):
+//   g++ -O2 -DNDEBUG -I DIR -I/usr/include/eigen3 bench/ros/trail_bench.cpp DIR/trail.cpp -lrostime -o /tmp/tb
 //   top_sim_run config/scenes/default.yaml --duration 60 --rate 200 --csv /tmp/contact.csv
-//   valgrind --tool=callgrind /tmp/trail_bench /tmp/contact.csv 100 [RESOLUTION=2e-4] [LENGTH=1000]
+//   valgrind --tool=callgrind /tmp/tb /tmp/contact.csv 100 [RESOLUTION=2e-4] [LENGTH=1000]   (and 200 tops: the
+//   difference of the two counts over 100 x the rows is the instructions per add)
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
