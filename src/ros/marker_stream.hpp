@@ -62,7 +62,7 @@ class MarkerStream {
   void collect_trail(const Trail& trail, const Frames& frames, const std::string& prefix, const MarkerTick& tick,
                      visualization_msgs::MarkerArray& out);
 
-  double pitch_ = 0.0;
+  double pitch_ = 0.0;  // set by follow_speed before the first tick (StateOutput::open)
   FixedKey fixed_sent_;
   double fixed_wall_ = -std::numeric_limits<double>::infinity();
   std::vector<visualization_msgs::Marker> moving_sent_;  // the arrows and label as last sent

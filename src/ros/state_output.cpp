@@ -50,6 +50,7 @@ void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
   out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
                                         subscription_changes_);
   out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_);
+  out.markers.follow_speed(0.0, params_.grid_pitch);  // the grid frame's pitch before the first marker tick
   ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
 }
 

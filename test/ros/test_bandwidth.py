@@ -3,14 +3,17 @@
 over 25 s of subscription (which starts with everything sent once to the new subscriber):
 - ~markers at most 40 KB/s (each trail chunk is sent once, fixed markers only on change; before: 3.7 MB/s);
 - ~path at most path_rate messages (0.1 Hz) of at most path_length (1000) poses (before: 10 Hz of 5000);
-- every topic of the node together at most 270 KB/s (rosbag adds about 40 KB/s of its own to the 300 KB/s target).
+- every topic of the node together at most 270 KB/s (rosbag adds about 40 KB/s of its own to the 300 KB/s target);
+- every transform finite, those that start with the markers' first subscriber (contact, grid) included.
 Bytes are the messages as serialised (rospy.AnyMsg), the bytes a bag stores."""
+import math
 import threading
 import unittest
 
 import rospy
 import rostest
 from nav_msgs.msg import Path
+from tf2_msgs.msg import TFMessage
 
 WINDOW = 25.0   # [s] measured
 AGE = 12.0      # [s] of node time first: 1000 poses at about 170 per second fill the trail in 6 s
@@ -22,7 +25,7 @@ class Bandwidth(unittest.TestCase):
         rospy.wait_for_message('/top_sim/top_state', rospy.AnyMsg, timeout=60.0)
         rospy.sleep(AGE)
         sizes, lock = {t: [] for t in TOPICS}, threading.Lock()
-        poses = []
+        poses, bad = [], []
 
         def counter(topic):
             def on(msg):
@@ -30,14 +33,26 @@ class Bandwidth(unittest.TestCase):
                     sizes[topic].append(len(msg._buff))
                     if topic == '/top_sim/path':  # one subscription per topic in rospy: read it from the bytes
                         poses.append(len(Path().deserialize(msg._buff).poses))
+                    if topic == '/tf':  # the frames that appear with the markers' subscriber are finite at once
+                        for t in TFMessage().deserialize(msg._buff).transforms:
+                            v = t.transform.translation, t.transform.rotation
+                            if not all(math.isfinite(x) for x in (v[0].x, v[0].y, v[0].z, v[1].x, v[1].y, v[1].z,
+                                                                  v[1].w)):
+                                bad.append(t.child_frame_id)
             return on
-        subs = [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=1000) for t in TOPICS]
+        # /tf first: it sees the transforms that start with the markers' first subscriber
+        subs = [rospy.Subscriber('/tf', rospy.AnyMsg, counter('/tf'), queue_size=1000)]
+        rospy.sleep(1.0)
+        with lock:
+            sizes['/tf'] = []
+        subs += [rospy.Subscriber(t, rospy.AnyMsg, counter(t), queue_size=1000) for t in TOPICS if t != '/tf']
         rospy.sleep(WINDOW)
         for s in subs:
             s.unregister()
         with lock:
             rate = {t: sum(v) / WINDOW for t, v in sizes.items()}
         report = ', '.join('%s %.1f KB/s (%d)' % (t, rate[t] / 1e3, len(sizes[t])) for t in TOPICS)
+        self.assertEqual(bad, [], 'non-finite transforms')
         self.assertGreater(len(sizes['/top_sim/top_state']), 0.5 * 200 * WINDOW, 'the node is not streaming: ' + report)
         self.assertLessEqual(rate['/top_sim/markers'], 40e3, report)
         self.assertGreaterEqual(len(poses), int(WINDOW * 0.1) - 1, report)
