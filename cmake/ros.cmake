@@ -3,6 +3,9 @@ find_package(catkin REQUIRED COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
   tf2 tf2_ros tf2_msgs diagnostic_updater dynamic_reconfigure message_generation roslib)
 
+# The Python package top_sim (setup.py): its sources next to the generated top_sim.msg and top_sim._core.
+catkin_python_setup()
+
 add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg TopStateArray.msg)
 add_service_files(DIRECTORY srv FILES Spawn.srv Kill.srv ListTops.srv)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs)
