@@ -84,11 +84,22 @@ def integer(flag, text, low, high, range_text):
 
 
 def check_value(flag, value):
-    """Raises top_sim_sweep's error when `value` is outside `flag`'s range (the C++ parser decides)."""
+    """Raises top_sim_sweep's error when `value` (a number or its text) is outside `flag`'s range (the C++ parser
+    decides)."""
+    text = value if isinstance(value, str) else repr(float(value))
     try:
-        _core.parse_sweep_options([flag, repr(float(value))])
+        _core.parse_sweep_options([flag, text])
     except _core.SweepArgumentError as e:
         raise BadArgument(str(e)) from None
+
+
+def check_part(flag, text, name, part):
+    """check_value for one number of a distribution, named in the message (uniform:LO:HI's HI = ...)."""
+    try:
+        check_value(flag, part)
+    except BadArgument as e:
+        reason = str(e).split("': ", 1)[-1]
+        raise BadArgument("%s = '%s': %s = %s %s" % (flag, text, name, part, reason)) from None
 
 
 def in_range(flag, value):
@@ -104,18 +115,18 @@ def parse_distribution(flag, text):
     form = "one value or uniform:LO:HI | normal:MEAN:SD | lognormal:MEDIAN:SIGMA"
     parts = text.split(":")
     if len(parts) == 1 and "," not in text:
-        check_value(flag, _number(flag, text, form))
+        check_value(flag, text)
         return ("fixed", float(text))
     if len(parts) != 3 or parts[0] not in DISTRIBUTIONS:
         raise BadArgument("%s = '%s': with --samples, must be %s" % (flag, text, form))
     a, b = _number(flag, parts[1], form), _number(flag, parts[2], form)
     if parts[0] == "uniform":
-        check_value(flag, a)
-        check_value(flag, b)
+        check_part(flag, text, "LO", parts[1])
+        check_part(flag, text, "HI", parts[2])
         if not a < b:
             raise BadArgument("%s = '%s': uniform:LO:HI needs LO < HI" % (flag, text))
     else:
-        check_value(flag, a)  # the mean or median is a value of the parameter
+        check_part(flag, text, "MEAN" if parts[0] == "normal" else "MEDIAN", parts[1])  # a value of the parameter
         if not b > 0.0:
             raise BadArgument("%s = '%s': the spread of %s must be > 0" % (flag, text, parts[0]))
         if parts[0] == "lognormal" and not a > 0.0:
@@ -478,8 +489,9 @@ def main(argv=None):
         what = "bad grid point: " if isinstance(e, _core.SceneError) else ""
         sys.stderr.write("top_sim.sweep: %s%s\n%s" % (what, e, USAGE if not what else ""))
         return 2
-    # SIGTERM as Ctrl-C: the rows so far stay, the cluster is closed.
-    signal.signal(signal.SIGTERM, lambda *_: (_ for _ in ()).throw(KeyboardInterrupt()))
+    # SIGINT (also when started in the background, which ignores it) and SIGTERM as Ctrl-C: the rows so far stay.
+    signal.signal(signal.SIGINT, signal.default_int_handler)
+    signal.signal(signal.SIGTERM, signal.default_int_handler)
     try:
         return sweep(plan)
     except BadArgument as e:
