@@ -57,20 +57,21 @@ def rows_are_valid(text, header):
 @pytest.mark.parametrize("args", [
     ["--alpha", "2"], ["--alpha", "0.1:0.2:0"], ["--spin", "0"], ["--mu-c", "-1"], ["--tol", "x"], ["--bogus"],
     ["--threads", "0"], ["--start", "sideways"], ["--alpha"], ["--top", "a,,b"]])
-def test_bad_arguments_give_top_sim_sweeps_messages(args, tmp_path):
+def test_bad_arguments_give_top_sim_sweeps_messages(args, capsys):
     if not SWEEP_BINARY:
         pytest.skip("TOP_SIM_SWEEP_BINARY not set (ctest sets it)")
-    ours = python_sweep(args)
+    assert sweep.main(args) == 2  # in this process: the errors come before any cluster starts
+    ours = capsys.readouterr().err
     theirs = subprocess.run([SWEEP_BINARY] + args, capture_output=True, text=True)
-    assert ours.returncode == theirs.returncode == 2
+    assert theirs.returncode == 2
     first = theirs.stderr.splitlines()[0].replace("top_sim_sweep: ", "")
-    assert ours.stderr.splitlines()[0] == "top_sim.sweep: " + first
+    assert ours.splitlines()[0] == "top_sim.sweep: " + first
 
 
-def test_bad_grid_point_names_the_key():
-    r = python_sweep(["--alpha", "0.1", "--plane", "no_such_plane"])
-    assert r.returncode == 2
-    assert "bad grid point" in r.stderr and "friction" in r.stderr and "no_such_plane" in r.stderr
+def test_bad_grid_point_names_the_key(capsys):
+    assert sweep.main(["--alpha", "0.1", "--plane", "no_such_plane"]) == 2
+    err = capsys.readouterr().err
+    assert "bad grid point" in err and "friction" in err and "no_such_plane" in err
 
 
 @pytest.mark.parametrize("args, words", [
@@ -82,7 +83,7 @@ def test_bad_grid_point_names_the_key():
     (["--samples", "3", "--seed", "1", "--alpha", "uniform:0.2:0.1"], ["'uniform:0.2:0.1'", "LO < HI"]),
     (["--samples", "3", "--seed", "1", "--alpha", "uniform:0.1:2"], ["HI = 2", "(0, pi/2)"]),
     (["--samples", "3", "--seed", "1", "--alpha", "normal:0.1:0"], ["'normal:0.1:0'", "> 0"]),
-    (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--mu-c", "lognormal:-0.3:0.1"], ["--mu-c", "median"]),
+    (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--mu-c", "lognormal:-0.3:0.1"], ["--mu-c", "MEDIAN"]),
     (["--samples", "3", "--seed", "1", "--alpha", "poisson:1:2"], ["'poisson:1:2'", "uniform:LO:HI"]),
     (["--samples", "3", "--seed", "1", "--alpha", "0.1,0.2"], ["'0.1,0.2'", "one value"]),
     (["--alpha", "normal:0.1:0.01"], ["--samples"]),
@@ -90,11 +91,11 @@ def test_bad_grid_point_names_the_key():
     (["--scheduler", "tcp://127.0.0.1:1", "--threads", "2"], ["--threads"]),
     (["--resume"], ["--out FILE"]),
     (["--connect-timeout", "0"], ["--connect-timeout = '0'", "(0, 3600]"])])
-def test_bad_monte_carlo_and_cluster_flags(args, words):
-    r = python_sweep(args)
-    assert r.returncode == 2, r.stderr
+def test_bad_monte_carlo_and_cluster_flags(args, words, capsys):
+    assert sweep.main(args) == 2
+    first = capsys.readouterr().err.splitlines()[0]
     for w in words:
-        assert w in r.stderr.splitlines()[0]
+        assert w in first
 
 
 # ---- the samplers -----------------------------------------------------------------------------------------------
@@ -141,7 +142,7 @@ def test_local_cluster_rows_equal_top_sim_sweeps(tmp_path):
 
 
 def test_interrupted_sweep_leaves_a_valid_file_and_resume_completes_it(tmp_path):
-    args = ["--alpha", "0.02:0.06:6", "--max-path", "20"]  # 0.2 to 1 s of CPU per point
+    args = ["--alpha", "0.03:0.07:5", "--max-path", "12"]  # 0.1 to 0.4 s of CPU per point
     out = tmp_path / "partial.csv"
     p = subprocess.Popen([sys.executable, "-m", "top_sim.sweep", "--threads", "2", "--out", str(out)] + args,
                          stderr=subprocess.PIPE, text=True)
@@ -154,7 +155,7 @@ def test_interrupted_sweep_leaves_a_valid_file_and_resume_completes_it(tmp_path)
     text = out.read_text()
     assert rows_are_valid(text, top_sim.SWEEP_HEADER)
     kept = text.count("\n") - 1
-    assert 1 <= kept < 6 and "--resume" in err
+    assert 1 <= kept < 5 and "--resume" in err
     with open(out, "a") as f:
         f.write("aluminium,pmma,0.25,0.6,200,0.0")  # a row cut short, as by a kill during a write
     r = python_sweep(args + ["--threads", "2", "--out", str(out), "--resume"])
@@ -163,33 +164,32 @@ def test_interrupted_sweep_leaves_a_valid_file_and_resume_completes_it(tmp_path)
     assert without_cpu(out.read_text().splitlines()) == without_cpu(reference_rows(args, tmp_path))
 
 
-def test_resume_refuses_another_sweeps_file(tmp_path):
+def test_resume_refuses_another_sweeps_file(tmp_path, capsys):
     out = tmp_path / "other.csv"
     out.write_text(top_sim.SWEEP_HEADER + "\n" + "steel,steel,0.2,0.7,200,0.1" + ",0" * 12 + "\n")
-    r = python_sweep(QUICK + ["--out", str(out), "--resume"])
-    assert r.returncode == 2 and "does not have" in r.stderr
+    assert sweep.main(QUICK + ["--out", str(out), "--resume"]) == 2
+    assert "does not have" in capsys.readouterr().err
 
 
 def test_monte_carlo_is_reproducible_with_a_seed(tmp_path):
     args = ["--samples", "6", "--seed", "42", "--alpha", "uniform:0.05:0.2", "--mu-c", "normal:0.25:0.01",
             "--max-path", "3"]
-    runs = []
-    for workers in ("1", "2"):
-        out = tmp_path / ("mc%s.csv" % workers)
-        r = python_sweep(args + ["--threads", workers, "--out", str(out)])
-        assert r.returncode == 0, r.stderr
-        assert "Monte Carlo, 6 samples" in r.stderr and "phi* analytic (6 samples" in r.stderr
-        runs.append(without_cpu(out.read_text().splitlines(), first=1))
-    assert runs[0] == runs[1]
-    # Each row is the sample the seed draws, simulated by the same C++ point as top_sim_sweep's.
+    out = tmp_path / "mc.csv"
+    r = python_sweep(args + ["--threads", "2", "--out", str(out)])
+    assert r.returncode == 0, r.stderr
+    assert "Monte Carlo, 6 samples" in r.stderr and "phi* analytic (6 samples" in r.stderr
+    lines = out.read_text().splitlines()
+    assert lines[0] == "sample," + top_sim.SWEEP_HEADER
+    # The seed alone makes the points again; run here, one by one, they give the cluster's rows.
     plan = sweep.parse_arguments(args)
-    rows = list(csv.DictReader(io.StringIO("\n".join(runs[0]))))
-    assert [int(r["sample"]) for r in rows] == list(range(6))
-    for row, point in zip(rows, plan.points):
-        assert row["alpha"] == sweep.number_text(point["alpha"]) and row["mu_c"] == sweep.number_text(point["mu_c"])
-        assert 0.05 <= point["alpha"] <= 0.2
-        expected = top_sim._core.run_sweep_point(point, plan.settings)["row"].split(",")
-        assert row["phi_measured"] == expected[10] and row["steps"] == expected[16]
+    again = [lines[0]] + ["%d,%s" % (i, top_sim._core.run_sweep_point(p, plan.settings)["row"])
+                          for i, p in enumerate(plan.points)]
+    assert without_cpu(lines, first=1) == without_cpu(again, first=1)
+    rows = list(csv.DictReader(io.StringIO("\n".join(lines))))
+    assert all(0.05 <= float(row["alpha"]) <= 0.2 for row in rows)
+    assert len({row["alpha"] for row in rows}) == 6 and len({row["mu_c"] for row in rows}) == 6
+    other = sweep.parse_arguments(args[:3] + ["43"] + args[4:])
+    assert [p["alpha"] for p in other.points] != [p["alpha"] for p in plan.points]
 
 
 def test_unreachable_scheduler_fails_within_the_timeout(tmp_path):
