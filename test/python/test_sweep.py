@@ -8,7 +8,6 @@ import csv
 import io
 import math
 import os
-import shutil
 import signal
 import subprocess
 import sys
