@@ -4,4 +4,11 @@ The physics core is the compiled module top_sim._core (pybind11), re-exported he
 top_sim.sweep runs top_sim_sweep's grid on a Dask cluster (docs/studies.md). In a catkin workspace the same
 package also holds the generated ROS messages and services (top_sim.msg, top_sim.srv).
 """
-from top_sim._core import *  # noqa: F401,F403 (the module's whole interface)
+from pkgutil import extend_path
+
+# Every top_sim directory on sys.path: in a catkin workspace the sources (this file) and the devel space (msg, srv,
+# _core) are two directories of one package, also when this file is found first (a spawned process's sys.path).
+__path__ = extend_path(__path__, __name__)
+del extend_path
+
+from top_sim._core import *  # noqa: E402,F401,F403 (the module's whole interface)

@@ -354,7 +354,15 @@ def connect(plan, workers):
     if plan.scheduler is None:
         cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
                                memory_limit=0, silence_logs=logging.ERROR)
-        return Client(cluster), cluster
+        client = Client(cluster)
+        try:  # a worker that cannot start (top_sim not importable in it) would otherwise be restarted forever
+            client.wait_for_workers(workers, timeout=max(plan.timeout, 60.0))
+        except Exception:
+            client.close(timeout=5)
+            cluster.close(timeout=5)
+            raise ClusterError("the local cluster's %d workers did not start within %g s" % (
+                workers, max(plan.timeout, 60.0))) from None
+        return client, cluster
     try:
         client = Client(plan.scheduler, timeout=plan.timeout)
     except Exception as e:  # OSError, TimeoutError, ValueError for a malformed address
