@@ -50,15 +50,43 @@ def python_sweep(args):
     return [sys.executable, "-m", "top_sim.sweep", "--no-progress"] + args
 
 
-def scaling(binary, tmp):
-    """One grid (aluminium on PMMA, 30 inclinations, tilted) on 1 and 2 workers, Dask and top_sim_sweep."""
+def scaling(binary, tmp, repeats):
+    """One grid (aluminium on PMMA, 30 inclinations, tilted) on 1 and 2 workers: top_sim_sweep's threads, a new
+    local cluster (its start included) and a running scheduler with that many workers (start excluded). Runs
+    interleaved, `repeats` times; the smallest and the median wall time."""
     grid = ["--alpha", "0.01:0.30:30"]
-    print("\n| tool | workers | wall [s] | CPU of the points [s] | load average |\n|---|---|---|---|---|")
-    for workers in ("1", "2"):
-        for name, cmd in (("top_sim_sweep", [binary]), ("top_sim.sweep (local cluster)", python_sweep([]))):
-            out = os.path.join(tmp, "scaling.csv")
-            wall, _ = timed(cmd + grid + ["--threads", workers, "--out", out])
-            print("| %s | %s | %.2f | %.2f | %.1f |" % (name, workers, wall, cpu_of(out), load()))
+    out = os.path.join(tmp, "scaling.csv")
+    walls, cpus, loads = {}, {}, []
+    for r in range(repeats):
+        for workers in (1, 2):
+            address, procs = start_cluster(tmp, workers, port=8790 + workers)
+            try:
+                runs = (("top_sim_sweep --threads N", [binary, "--threads", str(workers)]),
+                        ("top_sim.sweep, local cluster (start included)", python_sweep(["--threads", str(workers)])),
+                        ("top_sim.sweep --scheduler, N workers running", python_sweep(["--scheduler", address])))
+                for name, cmd in runs:
+                    wall, _ = timed(cmd + grid + ["--out", out])
+                    walls.setdefault((name, workers), []).append(wall)
+                    cpus.setdefault((name, workers), []).append(cpu_of(out))
+                    loads.append(load())
+            finally:
+                stop(procs)
+    print("\n| tool | workers | wall [s]: smallest / median of %d | CPU of the points [s]: median |\n|---|---|---|---|"
+          % repeats)
+    for (name, workers), w in sorted(walls.items(), key=lambda kv: (kv[0][0], kv[0][1])):
+        print("| %s | %d | %.2f / %.2f | %.2f |" % (name, workers, min(w), statistics.median(w),
+                                                    statistics.median(cpus[(name, workers)])))
+    print("load average during these runs: %.1f to %.1f" % (min(loads), max(loads)))
+
+
+def stop(procs):
+    for p in reversed(procs):
+        p.send_signal(signal.SIGINT)
+    for p in procs:
+        try:
+            p.wait(timeout=20)
+        except subprocess.TimeoutExpired:
+            p.kill()
 
 
 def overhead(tmp):
@@ -114,13 +142,7 @@ def fig4(tmp, binary, data_dir, png):
                                                                         wall_cxx, eq, n))
         print("| **whole grid** | %d | **%.1f** | %.1f | %.1f | %d of %d |" % (rows, total, cpu, total_cxx, same, rows))
     finally:
-        for p in reversed(procs):
-            p.send_signal(signal.SIGINT)
-        for p in procs:
-            try:
-                p.wait(timeout=20)
-            except subprocess.TimeoutExpired:
-                p.kill()
+        stop(procs)
     subprocess.run([sys.executable, os.path.join(REPO, "scripts", "plots", "fig4_tan_half_phi.py"), data_dir, png],
                    check=True)
     print("figure: %s (load average %.1f)" % (png, load()))
@@ -161,13 +183,14 @@ def main():
     ap.add_argument("--sweep-binary", default=os.path.join(REPO, "build", "bin", "top_sim_sweep"))
     ap.add_argument("--fig4-data", default=os.path.join(REPO, "docs", "data", "dask_fig4"))
     ap.add_argument("--fig4-png", default=os.path.join(REPO, "docs", "img", "fig4_dask.png"))
+    ap.add_argument("--repeats", type=int, default=3, help="runs of each scaling case (default 3)")
     ap.add_argument("--skip", nargs="*", default=[], choices=["scaling", "overhead", "fig4"])
     a = ap.parse_args()
     print("machine: %d cores, load average %.1f at the start" % (os.cpu_count(), load()))
     tmp = tempfile.mkdtemp(prefix="sweep_dask_bench.")
     try:
         if "scaling" not in a.skip:
-            scaling(a.sweep_binary, tmp)
+            scaling(a.sweep_binary, tmp, a.repeats)
         if "overhead" not in a.skip:
             overhead(tmp)
         if "fig4" not in a.skip:

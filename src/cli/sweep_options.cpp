@@ -37,17 +37,11 @@ namespace {
 
 using top_sim_cli::BadArgument;
 
-double parse_number(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw BadArgument{flag + " = '" + text + "': not a finite number"};
-  return v;
-}
+using top_sim_cli::finite_number;
 
 template <class Ok>
 double checked(const std::string& flag, const std::string& text, Ok ok, const std::string& range) {
-  const double v = parse_number(flag, text);
+  const double v = finite_number(flag, text);
   if (!ok(v)) throw BadArgument{flag + " = '" + text + "': must be " + range};
   return v;
 }
@@ -68,7 +62,7 @@ std::vector<double> number_list(const std::string& flag, const std::string& text
   const auto colon = split(text, ':');
   if (colon.size() == 3) {
     const double a = checked(flag, colon[0], ok, range), b = checked(flag, colon[1], ok, range);
-    const double n = parse_number(flag, colon[2]);
+    const double n = finite_number(flag, colon[2]);
     if (n < 1 || n > 100000 || n != std::floor(n))
       throw BadArgument{flag + " = '" + text + "': the count N of A:B:N must be an integer in [1, 100000]"};
     if (b < a) throw BadArgument{flag + " = '" + text + "': A:B:N needs A <= B"};

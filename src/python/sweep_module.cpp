@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 #include <sstream>
+#include <utility>
 
 #include "arguments.hpp"
 #include "sweep_options.hpp"
@@ -45,18 +46,22 @@ SweepPoint point_from(const py::dict& d) {
   return p;
 }
 
+// The numeric fields of SweepSettings by name: one list for both directions of the conversion.
+const std::pair<const char*, double SweepSettings::*> kSettingsNumbers[] = {
+    {"tilt", &SweepSettings::tilt},
+    {"launch_perturbation", &SweepSettings::launch_perturbation},
+    {"max_path", &SweepSettings::max_path},
+    {"min_duration", &SweepSettings::min_duration},
+    {"max_duration", &SweepSettings::max_duration},
+    {"slide_duration", &SweepSettings::slide_duration},
+    {"phi_tolerance", &SweepSettings::phi_tolerance},
+    {"window_path", &SweepSettings::window_path}};
+
 py::dict settings_dict(const SweepSettings& s) {
   py::dict d;
   d["config_dir"] = s.config_dir;
   d["start"] = s.start == SweepStart::launched ? "launched" : "tilted";
-  d["tilt"] = s.tilt;
-  d["launch_perturbation"] = s.launch_perturbation;
-  d["max_path"] = s.max_path;
-  d["min_duration"] = s.min_duration;
-  d["max_duration"] = s.max_duration;
-  d["slide_duration"] = s.slide_duration;
-  d["phi_tolerance"] = s.phi_tolerance;
-  d["window_path"] = s.window_path;
+  for (const auto& [name, field] : kSettingsNumbers) d[name] = s.*field;
   return d;
 }
 
@@ -64,14 +69,7 @@ SweepSettings settings_from(const py::dict& d) {
   SweepSettings s;
   s.config_dir = d["config_dir"].cast<std::string>();
   s.start = d["start"].cast<std::string>() == "launched" ? SweepStart::launched : SweepStart::tilted;
-  s.tilt = d["tilt"].cast<double>();
-  s.launch_perturbation = d["launch_perturbation"].cast<double>();
-  s.max_path = d["max_path"].cast<double>();
-  s.min_duration = d["min_duration"].cast<double>();
-  s.max_duration = d["max_duration"].cast<double>();
-  s.slide_duration = d["slide_duration"].cast<double>();
-  s.phi_tolerance = d["phi_tolerance"].cast<double>();
-  s.window_path = d["window_path"].cast<double>();
+  for (const auto& [name, field] : kSettingsNumbers) s.*field = d[name].cast<double>();
   return s;
 }
 
