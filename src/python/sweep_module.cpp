@@ -25,14 +25,9 @@ std::optional<double> number_or_none(const py::dict& d, const char* key) {
 }
 
 py::dict point_dict(const SweepPoint& p) {
-  py::dict d;
-  d["top"] = p.top;
-  d["plane"] = p.plane;
-  d["alpha"] = p.alpha;
-  d["spin"] = p.spin;
-  d["mu_c"] = optional_number(p.mu_c);
-  d["s_c"] = optional_number(p.s_c);
-  return d;
+  return py::dict(py::arg("top") = p.top, py::arg("plane") = p.plane, py::arg("alpha") = p.alpha,
+                  py::arg("spin") = p.spin, py::arg("mu_c") = optional_number(p.mu_c),
+                  py::arg("s_c") = optional_number(p.s_c));
 }
 
 SweepPoint point_from(const py::dict& d) {
