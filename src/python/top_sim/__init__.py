@@ -11,4 +11,8 @@ from pkgutil import extend_path
 __path__ = extend_path(__path__, __name__)
 del extend_path
 
-from top_sim._core import *  # noqa: E402,F401,F403 (the module's whole interface)
+try:
+    from top_sim._core import *  # noqa: E402,F401,F403 (the module's whole interface)
+except ModuleNotFoundError as e:  # built with TOP_SIM_PYTHON=OFF: top_sim.msg and top_sim.srv still import
+    if e.name != "top_sim._core":
+        raise
