@@ -319,7 +319,7 @@ def open_output(plan):
         sys.stdout.write(plan.header + "\n")
         sys.stdout.flush()
         return sys.stdout, []
-    if plan.resume and os.path.exists(plan.out):
+    if plan.resume and os.path.exists(plan.out) and os.path.getsize(plan.out) > 0:  # empty: not even the header
         done = read_partial(plan)
         return open(plan.out, "a", encoding="utf-8"), done
     try:
