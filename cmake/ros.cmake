@@ -114,7 +114,7 @@ if(CATKIN_ENABLE_TESTING)
   # The Python package top_sim of the devel space: top_sim.msg, the physics and python3 -m top_sim.sweep.
   set(_python_package_result ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/python-package.xml)
   catkin_run_tests_target(python package python-package.xml
-    COMMAND "${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider -c /dev/null -o junit_family=xunit1 --junitxml=${_python_package_result} ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_python_package.py"
+    COMMAND "${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider -c /dev/null -o junit_family=xunit1 -o junit_suite_name=python_package --junitxml=${_python_package_result} ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_python_package.py"
     DEPENDENCIES top_sim_python ${PROJECT_NAME}_generate_messages_py)
   # Time: /clock followed under use_sim_time, monotonic through ~reset and ~spawn; replay of a recorded bag.
   add_rostest(test/ros/clock.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
