@@ -15,8 +15,10 @@ add_library(top_sim_output src/output/run_output.cpp src/output/plot.cpp)
 target_include_directories(top_sim_output PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/output)
 target_link_libraries(top_sim_output PUBLIC top_sim_core)
 
-add_library(top_sim_cli_common src/cli/sweep_point.cpp src/cli/fit_data.cpp)
+add_library(top_sim_cli_common src/cli/sweep_point.cpp src/cli/sweep_options.cpp src/cli/fit_data.cpp)
 target_link_libraries(top_sim_cli_common PUBLIC top_sim_output)
+# Position-independent: the Python module (a shared object) links the sweep's code (cmake/python.cmake).
+set_target_properties(top_sim_output top_sim_cli_common PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 add_executable(top_sim_run src/cli/top_sim_run.cpp)
 target_link_libraries(top_sim_run top_sim_cli_common)

@@ -3,6 +3,9 @@ find_package(catkin REQUIRED COMPONENTS
   roscpp std_msgs std_srvs geometry_msgs nav_msgs visualization_msgs rosgraph_msgs
   tf2 tf2_ros tf2_msgs diagnostic_updater dynamic_reconfigure message_generation roslib)
 
+# The Python package top_sim (setup.py): its sources next to the generated top_sim.msg and top_sim._core.
+catkin_python_setup()
+
 add_message_files(DIRECTORY msg FILES TopState.msg TopCommand.msg TopStateArray.msg)
 add_service_files(DIRECTORY srv FILES Spawn.srv Kill.srv ListTops.srv)
 generate_messages(DEPENDENCIES std_msgs geometry_msgs)
@@ -114,6 +117,11 @@ if(CATKIN_ENABLE_TESTING)
   catkin_run_tests_target(netns distributed netns-distributed.xml
     COMMAND "timeout -k 15 58 bash ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/distributed_netns.sh ${_netns_result} ${CATKIN_DEVEL_PREFIX}/.."
     DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # The Python package top_sim of the devel space: top_sim.msg, the physics and python3 -m top_sim.sweep.
+  set(_python_package_result ${CATKIN_TEST_RESULTS_DIR}/${PROJECT_NAME}/python-package.xml)
+  catkin_run_tests_target(python package python-package.xml
+    COMMAND "${PYTHON_EXECUTABLE} -m pytest -q -p no:cacheprovider -c /dev/null -o junit_family=xunit1 -o junit_suite_name=python_package --junitxml=${_python_package_result} ${CMAKE_CURRENT_SOURCE_DIR}/test/ros/test_python_package.py"
+    DEPENDENCIES top_sim_python ${PROJECT_NAME}_generate_messages_py)
   # Time: /clock followed under use_sim_time, monotonic through ~reset and ~spawn; replay of a recorded bag.
   add_rostest(test/ros/clock.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/replay.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)

@@ -19,7 +19,7 @@ TOP_SIM_PACKAGES=(
   libglib2.0-dev libgtest-dev google-mock libbenchmark-dev python3-geometry-msgs python3-tf2-msgs
   python3-visualization-msgs python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
-  pybind11-dev python3-dev python3-numpy python3-pytest
+  pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-tqdm
   librviz-dev pluginlib-dev libinteractive-markers-dev libmujoco-dev tf-tools
 )
 

@@ -62,11 +62,7 @@ std::ostream* report = &std::cout;
 using top_sim_cli::BadArgument;
 
 double number(const std::string& flag, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || *end != '\0' || !std::isfinite(v))
-    throw BadArgument{flag + " = '" + text + "': not a finite number"};
-  return v;
+  return top_sim_cli::finite_number(flag, text);
 }
 
 struct Range {

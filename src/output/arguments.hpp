@@ -1,6 +1,8 @@
 // Command-line arguments of the tools: one error type and one exit path for usage and bad arguments.
 #pragma once
 
+#include <cmath>
+#include <cstdlib>
 #include <iostream>
 #include <optional>
 #include <string>
@@ -11,6 +13,15 @@ namespace top_sim_cli {
 struct BadArgument {
   std::string message;
 };
+
+// `text` as a finite number; throws naming the flag and the text otherwise.
+inline double finite_number(const std::string& flag, const std::string& text) {
+  char* end = nullptr;
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v))
+    throw BadArgument{flag + " = '" + text + "': not a finite number"};
+  return v;
+}
 
 // The tool's one positional argument (`what`: "scene file", "bag") into `slot`; throws for an unknown option or a
 // second one.

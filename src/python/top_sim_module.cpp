@@ -1,4 +1,5 @@
-// The Python module `top_sim`: a thin adapter over the core (scenes, Simulator, stationary state, trajectories).
+// The compiled part of the Python package `top_sim` (top_sim._core, re-exported by top_sim/__init__.py): a thin
+// adapter over the core (scenes, Simulator, stationary state, trajectories, the sweep's points).
 // Simulation runs with the GIL released; each Simulator is owned by one thread at a time (a second thread gets
 // RuntimeError instead of a data race), so many simulators run in parallel threads.
 #include <pybind11/numpy.h>
@@ -371,9 +372,12 @@ void bind_simulator(py::module_& m) {
 
 }  // namespace
 
-PYBIND11_MODULE(top_sim, m) {
+void bind_sweep(py::module_& m);  // sweep_module.cpp
+
+PYBIND11_MODULE(_core, m) {
   m.doc() = "top_sim: a spinning top with a spherical tip on an inclined plane (the physics core of top_sim)";
   bind_scenes(m);
   bind_constants(m);
   bind_simulator(m);
+  bind_sweep(m);
 }

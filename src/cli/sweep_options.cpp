@@ -1,0 +1,175 @@
+#include "sweep_options.hpp"
+
+#include <cmath>
+#include <cstdlib>
+#include <functional>
+#include <sstream>
+
+#include "arguments.hpp"
+#include "top_sim/friction.hpp"
+
+namespace top_sim {
+
+const char* const kSweepOptionsUsage =
+    "  Grid (LIST = comma-separated values, or A:B:N = N evenly spaced values from A to B inclusive):\n"
+    "  --alpha LIST        inclinations [rad], each in (0, pi/2) (default 0.01:0.30:30)\n"
+    "  --top LIST          top names in config/tops or .yaml paths (default aluminium)\n"
+    "  --plane LIST        plane (friction) names in config/planes or .yaml paths (default pmma)\n"
+    "  --spin LIST         initial shell spin [rad/s], nonzero (default 200)\n"
+    "  --mu-c LIST         override the paper law's mu_c, > 0\n"
+    "  --s-c LIST          override the paper law's s_c, in (0, 1]\n"
+    "  Each point:\n"
+    "  --start MODE        tilted (default: at rest, figure axis tilted by --tilt) | launched (the analytic\n"
+    "                      sleeping state perturbed by --perturbation of extra tilt: slip starts near s*,\n"
+    "                      not at the s = 1 of a top at rest, which runs away close to alpha_c)\n"
+    "  --tilt RAD          initial tilt from the vertical (tilted start), in [0, 1) (default 0.1)\n"
+    "  --perturbation RAD  extra tilt of the launched start, in [0, 0.5] (default 0.01)\n"
+    "  --max-path M        give up after this sleeping-path length [m], > 0 (default 40)\n"
+    "  --max-duration S    and never after more than S simulated seconds, > 0 (default 20000)\n"
+    "  --slide-duration S  sliding must persist this long to count; run length above alpha_c (default 30)\n"
+    "  --tol RAD           converged when successive windows' travel angles differ by less, > 0 (default 1e-6)\n"
+    "  Output:\n"
+    "  --out FILE          CSV file (default - = standard output)\n"
+    "  --threads N         parallel workers, 1..1024 (default: all cores)\n"
+    "  --config DIR        directory holding tops/ and planes/ (default: the installed config)\n";
+
+namespace {
+
+using top_sim_cli::BadArgument;
+
+using top_sim_cli::finite_number;
+
+template <class Ok>
+double checked(const std::string& flag, const std::string& text, Ok ok, const std::string& range) {
+  const double v = finite_number(flag, text);
+  if (!ok(v)) throw BadArgument{flag + " = '" + text + "': must be " + range};
+  return v;
+}
+
+std::vector<std::string> split(const std::string& text, char sep) {
+  std::vector<std::string> parts;
+  std::string item;
+  std::istringstream is(text);
+  while (std::getline(is, item, sep)) parts.push_back(item);
+  if (!text.empty() && text.back() == sep) parts.push_back("");
+  return parts;
+}
+
+// LIST of numbers: "a,b,c" or "A:B:N"; every value checked against the flag's range.
+template <class Ok>
+std::vector<double> number_list(const std::string& flag, const std::string& text, Ok ok, const std::string& range) {
+  std::vector<double> values;
+  const auto colon = split(text, ':');
+  if (colon.size() == 3) {
+    const double a = checked(flag, colon[0], ok, range), b = checked(flag, colon[1], ok, range);
+    const double n = finite_number(flag, colon[2]);
+    if (n < 1 || n > 100000 || n != std::floor(n))
+      throw BadArgument{flag + " = '" + text + "': the count N of A:B:N must be an integer in [1, 100000]"};
+    if (b < a) throw BadArgument{flag + " = '" + text + "': A:B:N needs A <= B"};
+    const int count = static_cast<int>(n);
+    for (int i = 0; i < count; ++i) values.push_back(count == 1 ? a : a + (b - a) * i / (count - 1));
+  } else if (colon.size() == 1) {
+    for (const auto& item : split(text, ',')) values.push_back(checked(flag, item, ok, range));
+  } else {
+    throw BadArgument{flag + " = '" + text + "': expected a comma-separated list or A:B:N"};
+  }
+  if (values.empty()) throw BadArgument{flag + " = '" + text + "': empty list"};
+  return values;
+}
+
+std::vector<std::string> name_list(const std::string& flag, const std::string& text) {
+  auto names = split(text, ',');
+  for (const auto& n : names)
+    if (n.empty()) throw BadArgument{flag + " = '" + text + "': empty name in the list"};
+  if (names.empty()) throw BadArgument{flag + " = '" + text + "': empty list"};
+  return names;
+}
+
+using Value = std::function<std::string()>;  // the flag's value (throws BadArgument when it has none)
+
+// One of the grid's flags into `o`; false when `flag` is not a grid flag.
+bool read_grid_option(const std::string& a, const Value& value, SweepOptions& o) {
+  if (a == "--alpha") {
+    o.alphas = number_list(a, value(), [](double v) { return v > 0.0 && v < M_PI / 2; }, "in (0, pi/2) [rad]");
+  } else if (a == "--spin") {
+    o.spins = number_list(a, value(), [](double v) { return v != 0.0 && std::abs(v) <= 1e5; },
+                          "nonzero with |spin| <= 1e5 [rad/s]");
+  } else if (a == "--mu-c" || a == "--s-c") {
+    const bool mu = a == "--mu-c";
+    const ParameterRange range = find_friction_parameter(mu ? "mu_c" : "s_c")->range;
+    const auto v = number_list(a, value(), [range](double x) { return range.admits(x); }, range.text());
+    auto& target = mu ? o.mu_cs : o.s_cs;
+    target.assign(v.begin(), v.end());
+  } else if (a == "--top") {
+    o.tops = name_list(a, value());
+  } else if (a == "--plane") {
+    o.planes = name_list(a, value());
+  } else {
+    return false;
+  }
+  return true;
+}
+
+// One of the flags of each point's run or of the output into `o`; false when `flag` is none of them.
+bool read_run_option(const std::string& a, const Value& value, SweepOptions& o) {
+  SweepSettings& settings = o.settings;
+  if (a == "--start") {
+    const std::string s = value();
+    if (s == "tilted") settings.start = SweepStart::tilted;
+    else if (s == "launched") settings.start = SweepStart::launched;
+    else throw BadArgument{a + " = '" + s + "': must be tilted | launched"};
+  } else if (a == "--tilt") {
+    settings.tilt = checked(a, value(), [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
+  } else if (a == "--perturbation") {
+    settings.launch_perturbation = checked(a, value(), [](double v) { return v >= 0.0 && v <= 0.5; }, "in [0, 0.5] [rad]");
+  } else if (a == "--max-path") {
+    settings.max_path = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [m]");
+  } else if (a == "--max-duration") {
+    settings.max_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
+    settings.min_duration = std::min(settings.min_duration, settings.max_duration);
+  } else if (a == "--slide-duration") {
+    settings.slide_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
+  } else if (a == "--tol") {
+    settings.phi_tolerance = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [rad]");
+  } else if (a == "--threads") {
+    o.threads = static_cast<unsigned>(checked(a, value(), [](double v) { return v >= 1 && v <= 1024 && v == std::floor(v); },
+                                              "an integer in [1, 1024]"));
+  } else if (a == "--out") {
+    o.out_path = value();
+  } else if (a == "--config") {
+    settings.config_dir = value();
+  } else {
+    return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+bool parse_sweep_options(const std::vector<std::string>& args, SweepOptions& o) {
+  o.alphas = number_list("--alpha", "0.01:0.30:30", [](double) { return true; }, "");
+  for (std::size_t i = 0; i < args.size(); ++i) {
+    const std::string& a = args[i];
+    const Value value = [&]() -> std::string {
+      if (i + 1 >= args.size()) throw BadArgument{a + ": needs a value"};
+      return args[++i];
+    };
+    if (a == "-h" || a == "--help") return false;
+    if (!read_grid_option(a, value, o) && !read_run_option(a, value, o))
+      throw BadArgument{"unknown argument '" + a + "'"};
+  }
+  return true;
+}
+
+std::vector<SweepPoint> make_sweep_grid(const SweepOptions& o) {
+  std::vector<SweepPoint> grid;
+  for (const auto& top : o.tops)
+    for (const auto& plane : o.planes)
+      for (const auto& mu_c : o.mu_cs)
+        for (const auto& s_c : o.s_cs)
+          for (double spin : o.spins)
+            for (double alpha : o.alphas) grid.push_back(SweepPoint{top, plane, alpha, spin, mu_c, s_c});
+  return grid;
+}
+
+}  // namespace top_sim
