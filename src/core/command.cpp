@@ -16,6 +16,12 @@ std::string bad(const char* field, double value, const char* range) { return ran
 }  // namespace
 
 std::string validate(const Command& c, const Model& model) {
+  // Under model.kind auto a command always lands in the full model (physics.md section 7.1): judge it there.
+  if (model.automatic.enabled && model.kind != ModelKind::full) {
+    Model full = model;
+    full.kind = ModelKind::full;
+    return validate(c, full);
+  }
   if (c.inclination) {
     const double a = *c.inclination;
     if (!std::isfinite(a) || std::abs(a) >= M_PI / 2) return bad("inclination", a, "finite with |alpha| < pi/2 rad");

@@ -324,7 +324,7 @@ JsonObject final_json(const Snapshot& f) {
 void add_scene(JsonObject& o, const Scene& scene) {
   o.add("scene", quoted(scene.source))
       .add("method", quoted(to_string(scene.integrator.method)))
-      .add("model", quoted(to_string(scene.model.kind)))
+      .add("model", quoted(kind_name(scene.model)))
       .add("normal_force", quoted(to_string(scene.model.normal_force)));
 }
 

@@ -1,0 +1,150 @@
+// model.kind auto (physics.md section 7.1): the full model until the top sleeps, then the reduced model; the
+// full model again at commands, scene events and where the reduced model is not valid.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.hpp"
+#include "top_sim/auto_model.hpp"
+#include "top_sim/simulator.hpp"
+#include "top_sim/stationary.hpp"
+
+namespace {
+
+using namespace top_sim;
+using namespace top_sim_test;
+
+// The standard relaxation at alpha, 200 rad/s, under `kind`, with optional extra YAML (events).
+Scene relaxation(double alpha, const std::string& kind, const std::string& extra = "") {
+  return scene_from(standard_scene(alpha, 200.0, "model: {kind: " + kind + "}\n" + extra));
+}
+
+double contact_distance(const Simulator& a, const Simulator& b) {
+  return (a.snapshot().contact_point - b.snapshot().contact_point).norm();
+}
+
+TEST(AutoModel, HandsOverOnceAsleepAndKeepsTheFullModelsPathOverALongRun) {
+  Simulator full(relaxation(0.2, "full")), automatic(relaxation(0.2, "auto"));
+  EXPECT_EQ(automatic.model().kind, ModelKind::full);  // it starts in the full model
+  for (double t : {300.0, 1000.0}) {
+    full.advance_to(t);
+    automatic.advance_to(t);
+    ASSERT_EQ(automatic.fault(), ContactFault::none) << automatic.fault_message();
+    EXPECT_EQ(automatic.model().kind, ModelKind::adiabatic) << "t = " << t;
+    const Snapshot s = automatic.snapshot();
+    EXPECT_EQ(s.regime, Regime::sleeping);
+    // The reduced model sits on the sleeping state: phi is phi* to rounding; the full model's converges to it.
+    EXPECT_NEAR(s.phi, s.phi_star, 1e-12);
+    EXPECT_NEAR(full.snapshot().phi, s.phi_star, 1e-6) << "t = " << t;
+    // The handover's offset is bounded by model.auto_tolerance (1e-5 m); the linear prediction does better.
+    EXPECT_LT(contact_distance(full, automatic), 1e-5) << "t = " << t;
+    note("auto vs full contact point at " + std::to_string(t) + " s [m]", contact_distance(full, automatic));
+  }
+  EXPECT_EQ(automatic.handovers(), 1u);
+  EXPECT_GT(automatic.reduced_seconds(), 500.0);
+  // The energy balance holds across the handover: the decaying modes' energy went to W_diss.
+  EXPECT_LT(automatic.max_energy_residual(), 1e-9);
+  note("auto reduced seconds of 1000", automatic.reduced_seconds());
+}
+
+TEST(AutoModel, AScriptedEventResumesTheFullModelWhichMatchesAPureFullRun) {
+  const std::string event = "events:\n  - {t: 400.0, inclination: 0.15}\n";
+  Simulator full(relaxation(0.2, "full", event)), automatic(relaxation(0.2, "auto", event));
+  full.advance_to(399.0);
+  automatic.advance_to(399.0);
+  ASSERT_EQ(automatic.model().kind, ModelKind::adiabatic);
+  full.advance_to(400.0);
+  automatic.advance_to(400.0);
+  EXPECT_EQ(automatic.model().kind, ModelKind::full);  // the event landed in the full model
+  EXPECT_DOUBLE_EQ(automatic.model().plane.inclination, 0.15);
+  // Through the transient the event starts, both models keep the same path.
+  for (double t : {401.0, 410.0, 450.0}) {
+    full.advance_to(t);
+    automatic.advance_to(t);
+    EXPECT_EQ(automatic.model().kind, ModelKind::full) << "t = " << t;
+    EXPECT_LT(contact_distance(full, automatic), 1e-5) << "t = " << t;
+    EXPECT_NEAR(full.snapshot().phi, automatic.snapshot().phi, 1e-4) << "t = " << t;
+  }
+  // And once asleep at the new inclination it hands over again.
+  full.advance_to(2000.0);
+  automatic.advance_to(2000.0);
+  EXPECT_EQ(automatic.handovers(), 2u);
+  EXPECT_EQ(automatic.model().kind, ModelKind::adiabatic);
+  EXPECT_LT(contact_distance(full, automatic), 2e-5);
+  EXPECT_NEAR(automatic.snapshot().phi, automatic.snapshot().phi_star, 1e-12);
+  note("auto vs full contact point 1600 s after the event [m]", contact_distance(full, automatic));
+}
+
+TEST(AutoModel, ASpinCommandResumesTheFullModelWhichMatchesAPureFullRun) {
+  Simulator full(relaxation(0.2, "full")), automatic(relaxation(0.2, "auto"));
+  full.advance_to(500.0);
+  automatic.advance_to(500.0);
+  ASSERT_EQ(automatic.model().kind, ModelKind::adiabatic);
+  Command c;
+  c.spin = 150.0;
+  ASSERT_EQ(full.submit(c), "");
+  ASSERT_EQ(automatic.submit(c), "");
+  for (double t : {501.0, 520.0}) {
+    full.advance_to(t);
+    automatic.advance_to(t);
+    EXPECT_EQ(automatic.model().kind, ModelKind::full) << "t = " << t;
+    EXPECT_LT(contact_distance(full, automatic), 1e-5) << "t = " << t;
+    EXPECT_NEAR(full.snapshot().spin, automatic.snapshot().spin, 1e-6 * 150.0) << "t = " << t;
+  }
+}
+
+TEST(AutoModel, AnInclinationAboveCriticalResumesTheFullModelAndTheTopSlides) {
+  Simulator automatic(relaxation(0.2, "auto"));
+  automatic.advance_to(500.0);
+  ASSERT_EQ(automatic.model().kind, ModelKind::adiabatic);
+  Command c;
+  c.inclination = 0.3;  // above alpha_c = atan(0.25) = 0.245: no sleeping state, as for the full model
+  ASSERT_EQ(automatic.submit(c), "");
+  automatic.advance_to(502.0);
+  ASSERT_EQ(automatic.fault(), ContactFault::none) << automatic.fault_message();
+  EXPECT_EQ(automatic.model().kind, ModelKind::full);
+  const Snapshot s = automatic.snapshot();
+  EXPECT_EQ(s.regime, Regime::sliding);
+  EXPECT_FALSE(s.has_stationary_state);
+  EXPECT_EQ(automatic.handovers(), 1u);  // and it never hands over without a sleeping state
+  automatic.advance_to(520.0);
+  EXPECT_EQ(automatic.model().kind, ModelKind::full);
+  EXPECT_GT(automatic.snapshot().phi, 1.3);  // turning downhill towards pi/2
+}
+
+TEST(AutoModel, SnapshotWhileReducedCarriesTheFullModelsFields) {
+  Simulator automatic(relaxation(0.2, "auto"));
+  Simulator full(relaxation(0.2, "full"));
+  automatic.advance_to(800.0);
+  full.advance_to(800.0);
+  ASSERT_EQ(automatic.model().kind, ModelKind::adiabatic);
+  const Snapshot a = automatic.snapshot(), f = full.snapshot();
+  EXPECT_EQ(nonfinite_fields(a), "");
+  EXPECT_NEAR(a.slip, f.slip, 1e-6);
+  EXPECT_NEAR(a.mu, f.mu, 1e-6);
+  EXPECT_NEAR(a.normal_force, f.normal_force, 1e-6 * f.normal_force);
+  EXPECT_NEAR(angle_between(a.figure_axis, f.figure_axis), 0.0, 1e-6);
+  EXPECT_NEAR((a.tip_velocity - f.tip_velocity).norm(), 0.0, 1e-6 * f.tip_velocity.norm());
+  EXPECT_NEAR((a.com - f.com).norm(), 0.0, 1e-5);
+  EXPECT_NEAR(a.spin, f.spin, 1e-6 * std::abs(f.spin));
+}
+
+TEST(AutoModel, SceneKeysAreCheckedWithClearErrors) {
+  EXPECT_TRUE(relaxation(0.1, "auto").model.automatic.enabled);
+  EXPECT_FALSE(relaxation(0.1, "full").model.automatic.enabled);
+  try {
+    scene_from(standard_scene(0.1, 200.0, "model: {kind: full, auto_tolerance: 1e-6}\n"));
+    FAIL() << "auto_tolerance without kind auto was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key, "model.auto_tolerance");
+  }
+  try {
+    scene_from(standard_scene(0.1, 200.0, "model: {kind: auto, auto_tolerance: -1}\n"));
+    FAIL() << "a negative auto_tolerance was accepted";
+  } catch (const SceneError& e) {
+    EXPECT_EQ(e.key, "model.auto_tolerance");
+    EXPECT_NE(std::string(e.what()).find("> 0"), std::string::npos);
+  }
+}
+
+}  // namespace
