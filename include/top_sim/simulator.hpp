@@ -133,7 +133,7 @@ class Simulator {
   bool in_stiff_layer(const StateVector& y, bool inside) const;
   void consider_handover(double t, const StateVector& y);
   bool take_handover();
-  bool advance_reduced(double t_end, const StateVector& y1);
+  bool scan_reduced(double t_end, const StateVector& y1);
   void skip_cadence(double t_end);
   void resume_full();
 

@@ -397,12 +397,7 @@ bool Simulator::scan_events(double t_end) {
     return false;
   }
   if (closed_flight_) return scan_flight(t_end, y1);
-  if (model_.kind != ModelKind::full) {
-    scanned_ = t_end;
-    if (model_.automatic.enabled) return advance_reduced(t_end, y1);
-    run_cadence(t_end);
-    return fault_ == ContactFault::none;
-  }
+  if (model_.kind != ModelKind::full) return scan_reduced(t_end, y1);
   const ModeMargins m1 = step_end_margins(y1, sample_.dynamics, scan_end_.has_dynamics);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
@@ -598,7 +593,7 @@ void Simulator::cadence_point(double t, const StateVector& y) {
   cadence_regime_ = classify(model_.regime, a.indicators, false, cadence_regime_);
   invalidate_sample();  // a read's hysteresis is this point's regime
   if (model_.automatic.enabled && model_.kind == ModelKind::full && mode_ == ContactMode::slipping &&
-      cadence_regime_ == Regime::sleeping)
+      (cadence_regime_ == Regime::sleeping || cadence_regime_ == Regime::precessing))
     consider_handover(t, y);
 }
 
@@ -608,7 +603,7 @@ void Simulator::consider_handover(double t, const StateVector& y) {
   if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
   if (!reduction_.valid) return;
   const Handover h = handover(model_, reduction_, y);
-  if (!(h.offset.norm() <= model_.automatic.position_tolerance)) return;
+  if (!(h.offset.norm() * h.deviation <= model_.automatic.position_tolerance)) return;
   handover_.due = true;
   handover_.t = t;
   handover_.y = h.y;
@@ -633,9 +628,14 @@ bool Simulator::take_handover() {
   return true;
 }
 
-// The reduced model's step end: its cadence points counted; with a spin moved by the bearing, the reduction is
-// analysed again, and where it is no longer valid the full model resumes at t_end.
-bool Simulator::advance_reduced(double t_end, const StateVector& y1) {
+// The reduced model has no events. Under auto its cadence points are counted; with a spin moved by the bearing,
+// the reduction is analysed again, and where it is no longer valid the full model resumes at t_end.
+bool Simulator::scan_reduced(double t_end, const StateVector& y1) {
+  scanned_ = t_end;
+  if (!model_.automatic.enabled) {
+    run_cadence(t_end);
+    return fault_ == ContactFault::none;
+  }
   skip_cadence(t_end);
   if (reduction_applies(reduction_, y1)) return true;
   reduction_ = analyse_reduction(model_, y1);
