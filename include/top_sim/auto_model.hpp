@@ -42,9 +42,6 @@ bool reduction_applies(const Reduction& r, const StateVector& y);
 // offset of the decaying modes, the persisting ones kept, and u, f_hat, omega put on the sleeping state.
 struct Handover {
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();  // the predicted remaining offset of the contact point [m]
-  // The decaying part of y's distance from the sleeping state, relative: the largest of |du| / |u*|, |d f_hat|
-  // and |d omega| / |omega*|. The prediction is linear: its error is about |offset| times this.
-  double deviation = 0.0;
   StateVector y{};
 };
 Handover handover(const Model& model, const Reduction& r, const StateVector& y);

@@ -93,10 +93,6 @@ Handover handover(const Model& model_in, const Reduction& r, const StateVector& 
   const Eigen::VectorXd z_end = r.z_star + r.persisting * dz;  // where the decaying modes leave the state
   Handover h;
   h.offset = r.offset * dz;
-  const Eigen::VectorXd decaying = dz - r.persisting * dz;
-  const double u_star = r.z_star.head<2>().norm(), spin = std::abs(r.spin);
-  h.deviation = std::max({decaying.head<2>().norm() / u_star, decaying.segment<2>(2).norm(),
-                          decaying.segment<3>(4).norm() / spin});
   h.y = y;
   set_position(h.y, position(y) + h.offset);
   const StateVector y_end = expand(r.coords, z_end);
