@@ -19,13 +19,16 @@ namespace {
 
 using namespace top_sim;
 
+// kind "full", or "auto" with model.auto_tolerance `tolerance` (0: the default).
 std::string scene_text(const std::string& top, const std::string& plane, double alpha, double spin,
-                       const std::string& kind) {
-  char buf[512];
+                       const std::string& kind, double tolerance = 0.0) {
+  char model[128], buf[512];
+  if (tolerance > 0.0) std::snprintf(model, sizeof model, "{kind: %s, auto_tolerance: %.17g}", kind.c_str(), tolerance);
+  else std::snprintf(model, sizeof model, "{kind: %s}", kind.c_str());
   std::snprintf(buf, sizeof buf,
-                "top: %s\nfriction: %s\nplane: {inclination: %.17g}\nmodel: {kind: %s}\n"
+                "top: %s\nfriction: %s\nplane: {inclination: %.17g}\nmodel: %s\n"
                 "initial: {start: tilted, tilt: 0.1, spin: %.17g}\n",
-                top.c_str(), plane.c_str(), alpha, kind.c_str(), spin);
+                top.c_str(), plane.c_str(), alpha, model, spin);
   return buf;
 }
 
@@ -99,26 +102,35 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// Thread CPU seconds of a 3000 s run of the speed scene, and its final snapshot.
+double timed_run(const std::string& config, const std::string& kind, double tolerance, double duration, Snapshot& last,
+                 double& reduced_seconds) {
+  Simulator sim(parse_scene_text(scene_text("aluminium", "pmma", 0.1, 200.0, kind, tolerance), "speed.yaml", config));
+  const double cpu = timed_advance(sim, duration);
+  last = sim.snapshot();
+  reduced_seconds = sim.reduced_seconds();
+  return cpu;
+}
+
 void speed(const std::string& config) {
   const double duration = 3000.0;
   const int runs = 7;
-  std::vector<double> cpu_full, cpu_auto;
-  Snapshot last_full, last_auto;
-  for (int i = 0; i < runs; ++i) {
-    for (const char* kind : {"full", "auto"}) {
-      Simulator sim(parse_scene_text(scene_text("aluminium", "pmma", 0.1, 200.0, kind), "speed.yaml", config));
-      const double cpu = timed_advance(sim, duration);
-      (std::strcmp(kind, "full") == 0 ? cpu_full : cpu_auto).push_back(cpu);
-      (std::strcmp(kind, "full") == 0 ? last_full : last_auto) = sim.snapshot();
-    }
+  std::printf("| model | auto_tolerance [m] | handover [s] | CPU median of %d [s] | real-time factor | "
+              "phi - phi* [rad] | contact point vs full [m] |\n|---|---|---|---|---|---|---|\n", runs);
+  Snapshot full_last;
+  std::vector<double> cpu;
+  double reduced = 0.0;
+  for (int i = 0; i < runs; ++i) cpu.push_back(timed_run(config, "full", 0.0, duration, full_last, reduced));
+  double t = median(cpu);
+  std::printf("| full | - | - | %.4f | %.0f | %.2e | 0 |\n", t, duration / t, full_last.phi - full_last.phi_star);
+  for (double tolerance : {1e-5, 3e-5, 1e-4}) {
+    Snapshot last;
+    cpu.clear();
+    for (int i = 0; i < runs; ++i) cpu.push_back(timed_run(config, "auto", tolerance, duration, last, reduced));
+    t = median(cpu);
+    std::printf("| auto | %.0e | %.1f | %.4f | %.0f | %.2e | %.2e |\n", tolerance, duration - reduced, t, duration / t,
+                last.phi - last.phi_star, (last.contact_point - full_last.contact_point).norm());
   }
-  const double full = median(cpu_full), automatic = median(cpu_auto);
-  std::printf("| model | CPU median of %d [s] | real-time factor | phi - phi* [rad] | contact point vs full [m] |\n",
-              runs);
-  std::printf("|---|---|---|---|---|\n");
-  std::printf("| full | %.4f | %.0f | %.2e | 0 |\n", full, duration / full, last_full.phi - last_full.phi_star);
-  std::printf("| auto | %.4f | %.0f | %.2e | %.2e |\n", automatic, duration / automatic,
-              last_auto.phi - last_auto.phi_star, (last_auto.contact_point - last_full.contact_point).norm());
   std::printf("\naluminium top on PMMA, alpha 0.1 rad, 200 rad/s from a 0.1 rad tilt, %.0f s (one thread).\n",
               duration);
 }

@@ -38,6 +38,10 @@ Reduction analyse_reduction(const Model& model, const StateVector& y);
 // Whether r was analysed at about y's spin (within kReanalysedSpin).
 bool reduction_applies(const Reduction& r, const StateVector& y);
 
+// The full model's predicted remaining offset of the contact point from y (the decaying modes) [m]: cheap, for the
+// criterion at every cadence point; handover() repeats it and builds the state.
+Eigen::Vector2d remaining_offset(const Reduction& r, const StateVector& y);
+
 // The full model's state y handed over to the reduced model: the contact point moved by the predicted remaining
 // offset of the decaying modes, the persisting ones kept, and u, f_hat, omega put on the sleeping state.
 struct Handover {

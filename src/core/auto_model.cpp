@@ -86,6 +86,10 @@ bool reduction_applies(const Reduction& r, const StateVector& y) {
   return std::abs(shell_spin_of(y) - r.spin) <= kReanalysedSpin * std::abs(r.spin);
 }
 
+Eigen::Vector2d remaining_offset(const Reduction& r, const StateVector& y) {
+  return r.offset * (reduce(r.coords, y) - r.z_star);
+}
+
 Handover handover(const Model& model_in, const Reduction& r, const StateVector& y) {
   Model model = model_in;
   model.kind = ModelKind::adiabatic;

@@ -593,7 +593,7 @@ void Simulator::cadence_point(double t, const StateVector& y) {
   cadence_regime_ = classify(model_.regime, a.indicators, false, cadence_regime_);
   invalidate_sample();  // a read's hysteresis is this point's regime
   if (model_.automatic.enabled && model_.kind == ModelKind::full && mode_ == ContactMode::slipping &&
-      cadence_regime_ == Regime::sleeping)
+      (cadence_regime_ == Regime::sleeping || cadence_regime_ == Regime::precessing))
     consider_handover(t, y);
 }
 
@@ -601,9 +601,8 @@ void Simulator::cadence_point(double t, const StateVector& y) {
 // decaying modes would still move the contact point by at most model.auto_tolerance (physics.md section 7.1).
 void Simulator::consider_handover(double t, const StateVector& y) {
   if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
-  if (!reduction_.valid) return;
+  if (!reduction_.valid || !(remaining_offset(reduction_, y).norm() <= model_.automatic.position_tolerance)) return;
   const Handover h = handover(model_, reduction_, y);
-  if (!(h.offset.norm() <= model_.automatic.position_tolerance)) return;
   handover_.due = true;
   handover_.t = t;
   handover_.y = h.y;
