@@ -710,8 +710,8 @@ Snapshot Simulator::snapshot() const {
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
                               const StationaryGeometry& geometry) {
-  Dynamics dynamics;
-  evaluate_dynamics(model, mode, y, dynamics);
+  Dynamics dynamics;  // the reduced model's snapshot reads the sleeping state, never the dynamics (make_snapshot)
+  if (model.kind == ModelKind::full) evaluate_dynamics(model, mode, y, dynamics);
   return analyse_sample(model, y, geometry, dynamics, mechanical_energy(model, y));
 }
 
