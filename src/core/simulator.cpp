@@ -283,7 +283,8 @@ void Simulator::apply_pending() {
       schedule_next_event();
     }
     if (due.empty()) return;
-    if (model_.kind != scene_.model.kind) resume_full();  // under auto every command lands in the full model
+    // Under auto every command and event lands in the full model.
+    if (model_.automatic.enabled && model_.kind != ModelKind::full) resume_full();
     reduction_ = Reduction{};
     for (const Command& c : due) apply_now(c);
   }
