@@ -11,6 +11,7 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
 
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
+                      [--scene FILE]
                       [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
@@ -94,9 +95,9 @@ class Diagnostics(object):
                 self.values = {kv.key: kv.value for kv in st.values}
 
 
-def set_parameters(env, tops, rate, tf, cpu=None):
+def set_parameters(env, tops, rate, tf, cpu=None, scene=''):
     import rospy
-    scene = os.path.join(nh.REPO, 'config', 'scenes', 'default.yaml')
+    scene = os.path.abspath(scene) if scene else os.path.join(nh.REPO, 'config', 'scenes', 'default.yaml')
     rospy.set_param(NODE, {
         'scene_file': scene, 'config_dir': os.path.join(nh.REPO, 'config'), 'publish_rate': float(rate),
         'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)},
@@ -163,7 +164,7 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
     import top_sim.msg as top_sim_msg
     keep_off_cpu(pin_cpu)
     log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
-    set_parameters(env, tops, rate, tf, pin_cpu)
+    set_parameters(env, tops, rate, tf, pin_cpu, args.scene)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600, node=node[1])
     subs = []
@@ -229,6 +230,7 @@ def parse_args():
     p = argparse.ArgumentParser(description=__doc__.split('\n\n')[0])
     p.add_argument('--configs', default='1:200,10:200,100:200,1000:50,1000:50:notf')
     p.add_argument('--seconds', type=float, default=20.0)
+    p.add_argument('--scene', default='', help='scene file of every top (default: config/scenes/default.yaml)')
     p.add_argument('--warmup', type=float, default=5.0)
     p.add_argument('--repeat', type=int, default=1)
     p.add_argument('--node', action='append', default=[],

@@ -32,9 +32,16 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
     -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)
 endif()
 
+# model.kind auto against the full model (docs/analysis.md): a plain program, built with or without benchmark.
+if(NOT TOP_SIM_ROS)
+  add_executable(auto_bench ${CMAKE_CURRENT_SOURCE_DIR}/bench/auto_bench.cpp)
+  target_link_libraries(auto_bench top_sim_cli_common)
+endif()
+
 find_package(benchmark QUIET)
 if(benchmark_FOUND)
   file(GLOB TOP_SIM_BENCH_SOURCES ${CMAKE_CURRENT_SOURCE_DIR}/bench/*.cpp)
+  list(FILTER TOP_SIM_BENCH_SOURCES EXCLUDE REGEX "auto_bench[.]cpp$")
   foreach(src ${TOP_SIM_BENCH_SOURCES})
     get_filename_component(name ${src} NAME_WE)
     add_executable(${name} ${src})

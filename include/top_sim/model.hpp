@@ -34,6 +34,13 @@ struct Top {
 enum class NormalForceModel { constrained, static_approximation };
 enum class ModelKind { full, adiabatic };
 
+// model.kind auto (physics.md section 7.1): a Model's kind is then the kind in force, full until the top sleeps
+// close enough to its sleeping state, adiabatic while that stays valid, full again at any command or event.
+struct AutoKind {
+  bool enabled = false;
+  double position_tolerance = 1.0e-5;  // model.auto_tolerance: the contact point's predicted offset at handover [m]
+};
+
 // Thresholds of the regime classification (physics.md section 8).
 struct RegimeThresholds {
   double nutation_angle = 1.0e-3;      // angle(omega, f_hat) above which the top nutates [rad] (physics.md: aligned to 1e-3)
@@ -57,7 +64,8 @@ struct Model {
   FrictionLaw friction;                  // command: the whole law
   double regularization_speed = 1.0e-9;  // v_eps [m/s]
   NormalForceModel normal_force = NormalForceModel::constrained;
-  ModelKind kind = ModelKind::full;
+  ModelKind kind = ModelKind::full;     // the kind in force (switched by the Simulator under auto)
+  AutoKind automatic;
   RegimeThresholds regime;
   ContactSettings contact;               // command: static_friction, restitution
 };
@@ -67,6 +75,8 @@ double static_friction(const Model& model);
 
 const char* to_string(NormalForceModel m);
 const char* to_string(ModelKind k);
+// The scene's model.kind: "auto" when the kind switches, else the kind's name.
+const char* kind_name(const Model& model);
 
 // Axial inertia the shell spins against: I_f' = I_f - J (physics.md section 6).
 inline double shell_axial_inertia(const Top& top) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "top_sim/auto_model.hpp"
 #include "top_sim/command.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/dynamics.hpp"
@@ -100,6 +101,10 @@ class Simulator {
   // dynamics evaluation, the indicators and the energy per point (no stationary solve, no sample).
   static constexpr double kRegimeCadence = 0.1;
   static constexpr std::size_t kMaxPendingSwitches = 100000;
+  // model.kind auto (physics.md section 7.1): handovers to the reduced model since the last reset, and the
+  // simulated seconds spent in it.
+  std::uint64_t handovers() const { return handovers_; }
+  double reduced_seconds() const;
   // Steps made by rosenbrock4 across the stiff slip-onset layer (included in stats()).
   std::uint64_t layer_steps() const { return numeric_stepper().layer_steps(); }
 
@@ -126,6 +131,11 @@ class Simulator {
   void run_cadence(double t_end);
   void cadence_point(double t, const StateVector& y);
   bool in_stiff_layer(const StateVector& y, bool inside) const;
+  void consider_handover(double t, const StateVector& y);
+  bool take_handover();
+  bool scan_reduced(double t_end, const StateVector& y1);
+  void skip_cadence(double t_end);
+  void resume_full();
 
   // What every advance and event scan reads or writes comes first, in a few cache lines: a node advances a
   // thousand tops per tick, and the lines a top touches are what its tick costs beyond the arithmetic.
@@ -177,6 +187,19 @@ class Simulator {
 
   // Read at resets, commands, events and faults.
   Scene scene_;
+  // model.kind auto: the reduction last analysed, a handover found at a cadence point (taken by the scan that ran
+  // the cadence), and the bookkeeping of the reduced model's time.
+  Reduction reduction_;
+  struct PendingHandover {
+    bool due = false;
+    double t = 0.0;
+    double energy_loss = 0.0;  // E before - E after: booked in W_diss
+    StateVector y{};
+  };
+  PendingHandover handover_;
+  std::uint64_t handovers_ = 0;
+  double reduced_since_ = 0.0;
+  double reduced_seconds_ = 0.0;
   // The stepper not in use: the closed-form flight (flight.hpp) while stepping, the numeric one in such a flight.
   std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);
   std::vector<Command> pending_;

@@ -162,6 +162,7 @@ void work_precision(const Options& opt) {
     variants.push_back({"full_static", stat});
     Scene adia = st.scene;
     adia.model.kind = ModelKind::adiabatic;
+    adia.model.automatic.enabled = false;  // the reduced model throughout, whatever the scene's kind
     if (adiabatic_validity(adia.model).empty()) variants.push_back({"adiabatic", adia});
 
     const Reference truth = reference(st.scene, st.T);
@@ -295,7 +296,7 @@ void model_choice(const Options& opt) {
     const Reference ref = reference(base, T);
     auto row = [&](const std::string& choice, Scene s) {
       const Outcome o = run_scene(s, T);
-      const std::string model = std::string(to_string(s.model.kind)) + "/" + to_string(s.model.normal_force);
+      const std::string model = std::string(kind_name(s.model)) + "/" + to_string(s.model.normal_force);
       csv << name << "," << T << "," << choice << "," << model << "," << to_string(s.integrator.method) << ","
           << g(s.integrator.rtol) << "," << o.ok << "," << g(o.cpu) << ","
           << g(o.ok ? (o.p - ref.o.p).norm() : NAN) << "," << g(std::abs(wrap(o.phi_measured - ref.o.phi_measured)))
@@ -308,6 +309,7 @@ void model_choice(const Options& opt) {
     row("static normal force", s);
     s = base;
     s.model.kind = ModelKind::adiabatic;
+    s.model.automatic.enabled = false;
     if (adiabatic_validity(s.model).empty()) row("adiabatic", s);
     for (Method m : {Method::switching, Method::rosenbrock4})
       if (m != base.integrator.method) row("integrator", with(base, m, base.integrator.dt, base.integrator.rtol));

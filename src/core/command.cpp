@@ -15,7 +15,9 @@ namespace {
 std::string bad(const char* field, double value, const char* range) { return range_message(field, value, range); }
 }  // namespace
 
-std::string validate(const Command& c, const Model& model) {
+namespace {
+
+std::string validate_in_kind(const Command& c, const Model& model) {
   if (c.inclination) {
     const double a = *c.inclination;
     if (!std::isfinite(a) || std::abs(a) >= M_PI / 2) return bad("inclination", a, "finite with |alpha| < pi/2 rad");
@@ -73,6 +75,18 @@ std::string validate(const Command& c, const Model& model) {
     if (!e.empty()) return e;
   }
   return "";
+}
+
+}  // namespace
+
+std::string validate(const Command& c, const Model& model) {
+  // Under model.kind auto a command always lands in the full model (physics.md section 7.1): judge it there.
+  if (model.automatic.enabled && model.kind != ModelKind::full) {
+    Model full = model;
+    full.kind = ModelKind::full;
+    return validate_in_kind(c, full);
+  }
+  return validate_in_kind(c, model);
 }
 
 }  // namespace top_sim

@@ -13,4 +13,6 @@ double static_friction(const Model& model) {
 
 const char* to_string(ModelKind k) { return k == ModelKind::full ? "full" : "adiabatic"; }
 
+const char* kind_name(const Model& model) { return model.automatic.enabled ? "auto" : to_string(model.kind); }
+
 }  // namespace top_sim

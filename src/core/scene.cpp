@@ -232,7 +232,13 @@ void read_model_options(Section& root, const std::string& file, Model& model) {
   model.normal_force = m.word("normal_force", "constrained", {"constrained", "static"}) == "static"
                            ? NormalForceModel::static_approximation
                            : NormalForceModel::constrained;
-  model.kind = m.word("kind", "full", {"full", "adiabatic"}) == "adiabatic" ? ModelKind::adiabatic : ModelKind::full;
+  const std::string kind = m.word("kind", "full", {"full", "adiabatic", "auto"});
+  model.kind = kind == "adiabatic" ? ModelKind::adiabatic : ModelKind::full;
+  model.automatic.enabled = kind == "auto";
+  if (m.has("auto_tolerance") && !model.automatic.enabled)
+    throw SceneError(file, "model.auto_tolerance", "only with model.kind: auto (kind is " + kind + ")");
+  model.automatic.position_tolerance = m.number("auto_tolerance", model.automatic.position_tolerance, positive,
+                                                "> 0 and finite [m]");
   m.finish();
   if (model.kind == ModelKind::adiabatic) {
     const std::string e = adiabatic_validity(model);

@@ -166,7 +166,12 @@ void Simulator::reset() {
   cadence_k_ = 0;
   cadence_regime_ = Regime::nutating;
   regime_seconds_.fill(0.0);
+  reduction_ = Reduction{};
+  handover_.due = false;
+  handovers_ = 0;
+  reduced_seconds_ = 0.0;
   if (fault_ == ContactFault::none) cadence_point(t_, y_);
+  take_handover();  // a scene that starts asleep hands over at once
 }
 
 // After any jump of the state, the model or the mode: optionally re-base the energy balance (commands inject
@@ -278,6 +283,9 @@ void Simulator::apply_pending() {
       schedule_next_event();
     }
     if (due.empty()) return;
+    // Under auto every command and event lands in the full model.
+    if (model_.automatic.enabled && model_.kind != ModelKind::full) resume_full();
+    reduction_ = Reduction{};
     for (const Command& c : due) apply_now(c);
   }
   invalidate_sample();
@@ -390,11 +398,7 @@ bool Simulator::scan_events(double t_end) {
     return false;
   }
   if (closed_flight_) return scan_flight(t_end, y1);
-  if (model_.kind != ModelKind::full) {
-    scanned_ = t_end;
-    run_cadence(t_end);
-    return fault_ == ContactFault::none;
-  }
+  if (model_.kind != ModelKind::full) return scan_reduced(t_end, y1);
   const ModeMargins m1 = step_end_margins(y1, sample_.dynamics, scan_end_.has_dynamics);
   int samples = 1;
   if (near_threshold(model_, last_margins_, mode_) || near_threshold(model_, m1, mode_)) {
@@ -418,7 +422,7 @@ bool Simulator::scan_events(double t_end) {
         if (fired(margins_of(model_, mode_, ym), ym) != kNoEvent) hi = mid; else lo = mid;
       }
       run_cadence(hi);  // the regime's points up to the event, on this step's dense output
-      if (fault_ != ContactFault::none) return false;
+      if (fault_ != ContactFault::none || take_handover()) return false;
       stepper_->state_at(hi, y_);
       t_ = hi;
       invalidate_sample();
@@ -436,7 +440,7 @@ bool Simulator::scan_events(double t_end) {
   scanned_ = t_end;
   scan_end_.valid = t_end < stepper_->time();  // a tick's end: its state and sample may read this scan's
   run_cadence(t_end);
-  return fault_ == ContactFault::none;
+  return fault_ == ContactFault::none && !take_handover();
 }
 
 // The state at t_end on the last step's dense output, and its energy, into scan_end_ (valid once the scan of a
@@ -563,7 +567,7 @@ std::vector<ModeSwitch> Simulator::take_mode_switches() {
 
 // The regime cadence points in (cadence_t_, t_end], each on the dense output of the step that holds it.
 void Simulator::run_cadence(double t_end) {
-  while (fault_ == ContactFault::none) {
+  while (fault_ == ContactFault::none && !handover_.due) {
     const double tk = t_origin_ + static_cast<double>(cadence_k_ + 1) * kRegimeCadence;
     if (tk > t_end) return;
     ++cadence_k_;
@@ -589,6 +593,89 @@ void Simulator::cadence_point(double t, const StateVector& y) {
   cadence_t_ = t;
   cadence_regime_ = classify(model_.regime, a.indicators, false, cadence_regime_);
   invalidate_sample();  // a read's hysteresis is this point's regime
+  if (model_.automatic.enabled && model_.kind == ModelKind::full && mode_ == ContactMode::slipping &&
+      (cadence_regime_ == Regime::sleeping || cadence_regime_ == Regime::precessing))
+    consider_handover(t, y);
+}
+
+// A sleeping top under auto: hand over at this cadence point when the reduction is valid at its spin and the
+// decaying modes would still move the contact point by at most model.auto_tolerance (physics.md section 7.1).
+void Simulator::consider_handover(double t, const StateVector& y) {
+  if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
+  if (!reduction_.valid || !(remaining_offset(reduction_, y).norm() <= model_.automatic.position_tolerance)) return;
+  const Handover h = handover(model_, reduction_, y);
+  handover_.due = true;
+  handover_.t = t;
+  handover_.y = h.y;
+  handover_.energy_loss = mechanical_energy(model_, y) - mechanical_energy(model_, h.y);
+}
+
+// The handover found by the cadence: the state and time go there, the reduced model takes over.
+bool Simulator::take_handover() {
+  if (!handover_.due) return false;
+  handover_.due = false;
+  y_ = handover_.y;
+  y_[idx::w_diss] += handover_.energy_loss;  // the decaying modes' energy, as their friction would have taken it
+  t_ = handover_.t;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    model_.kind = ModelKind::adiabatic;
+  }
+  ++handovers_;
+  reduced_since_ = t_;
+  invalidate_sample();
+  restart_stepper(false);
+  return true;
+}
+
+// The reduced model has no events. Under auto its cadence points are counted; with a spin moved by the bearing,
+// the reduction is analysed again, and where it is no longer valid the full model resumes at t_end.
+bool Simulator::scan_reduced(double t_end, const StateVector& y1) {
+  scanned_ = t_end;
+  if (!model_.automatic.enabled) {
+    run_cadence(t_end);
+    return fault_ == ContactFault::none;
+  }
+  skip_cadence(t_end);
+  if (reduction_applies(reduction_, y1)) return true;
+  reduction_ = analyse_reduction(model_, y1);
+  if (reduction_.valid) return true;
+  y_ = y1;
+  t_ = t_end;
+  invalidate_sample();
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    resume_full();
+  }
+  restart_stepper(false);
+  return false;
+}
+
+// Every cadence point of the reduced model classifies asleep (no nutation, no acceleration): counted, not analysed.
+void Simulator::skip_cadence(double t_end) {
+  std::uint64_t k = cadence_k_;
+  const auto point = [this](std::uint64_t i) { return t_origin_ + static_cast<double>(i) * kRegimeCadence; };
+  const double steps = std::floor((t_end - t_origin_) / kRegimeCadence);
+  if (steps > static_cast<double>(k) + 1.0) k = static_cast<std::uint64_t>(steps) - 1;
+  while (point(k + 1) <= t_end) ++k;  // the same points as run_cadence's, to the bit
+  if (k == cadence_k_) return;
+  const double first = point(cadence_k_ + 1), last = point(k);
+  regime_seconds_[code(cadence_regime_)] += first - cadence_t_;
+  regime_seconds_[code(Regime::sleeping)] += last - first;
+  cadence_regime_ = Regime::sleeping;
+  cadence_t_ = last;
+  cadence_k_ = k;
+  invalidate_sample();
+}
+
+// Called with pending_mutex_ held: it changes model_, which submit() reads from other threads.
+void Simulator::resume_full() {
+  model_.kind = ModelKind::full;
+  reduced_seconds_ += t_ - reduced_since_;
+}
+
+double Simulator::reduced_seconds() const {
+  return reduced_seconds_ + (model_.automatic.enabled && model_.kind != ModelKind::full ? t_ - reduced_since_ : 0.0);
 }
 
 std::array<double, kRegimeCount> Simulator::regime_seconds() const {
@@ -624,8 +711,8 @@ Snapshot Simulator::snapshot() const {
 
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
                               const StationaryGeometry& geometry) {
-  Dynamics dynamics;
-  evaluate_dynamics(model, mode, y, dynamics);
+  Dynamics dynamics;  // the reduced model's snapshot reads the sleeping state, never the dynamics (make_snapshot)
+  if (model.kind == ModelKind::full) evaluate_dynamics(model, mode, y, dynamics);
   return analyse_sample(model, y, geometry, dynamics, mechanical_energy(model, y));
 }
 

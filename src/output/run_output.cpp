@@ -200,10 +200,6 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
     sampled.add(s);
     if (opt.on_sample) opt.on_sample(s);
   };
-  auto sample = [&](double t) {
-    advance_to(t);
-    take_sample();
-  };
   const bool sampling = opt.sample_rate > 0.0;
   if (sampling) {
     take_sample();
@@ -214,7 +210,8 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
         advance_to(t_mark);
         mark = position(sim.state());
       }
-      sample(t);
+      advance_to(t);
+      take_sample();
       if (sim.fault() != ContactFault::none) break;
     }
   } else {
@@ -227,6 +224,8 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
   r.mode_switch_count = sim.mode_switch_count() - switches0;
   r.mode_seconds = since(seconds0, sim.mode_seconds());
   r.regime_seconds = since(regime_seconds0, sim.regime_seconds());
+  r.handovers = sim.handovers();
+  r.reduced_seconds = sim.reduced_seconds();
   r.sim_seconds = sim.time() - t0;
   r.final = sim.snapshot();
   r.stats = sim.stats();
@@ -324,7 +323,7 @@ JsonObject final_json(const Snapshot& f) {
 void add_scene(JsonObject& o, const Scene& scene) {
   o.add("scene", quoted(scene.source))
       .add("method", quoted(to_string(scene.integrator.method)))
-      .add("model", quoted(to_string(scene.model.kind)))
+      .add("model", quoted(kind_name(scene.model)))
       .add("normal_force", quoted(to_string(scene.model.normal_force)));
 }
 
@@ -389,6 +388,8 @@ std::string summary_json(const Scene& scene, const RunResult& r) {
   o.add("mode_seconds", per_name<ContactMode>(r.mode_seconds))
       .add("mode_switch_count", std::to_string(r.mode_switch_count))
       .add("mode_switches", switches_json(r.mode_switches, true));
+  if (scene.model.automatic.enabled)
+    o.add("handovers", std::to_string(r.handovers)).add("reduced_seconds", num(r.reduced_seconds));
   return o.str() + "\n";
 }
 

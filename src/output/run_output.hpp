@@ -78,6 +78,9 @@ struct RunResult {
   std::array<double, kContactModeCount> mode_seconds{};  // simulated seconds in each mode (this run)
   std::array<double, kRegimeCount> regime_seconds{};     // in each regime, on the simulator's regime cadence
   SampledSummary sampled;  // of the samples at RunOptions.sample_rate (with the initial state); none without
+  // model.kind auto: handovers to the reduced model and simulated seconds in it since the simulator's reset.
+  std::uint64_t handovers = 0;
+  double reduced_seconds = 0.0;
 };
 
 // Advances the simulator from its current time by options.duration.
