@@ -170,7 +170,7 @@ TEST(AutoModel, SnapshotWhileReducedCarriesTheFullModelsFields) {
 // unstable (and the bearing drags the shell spin through zero in 20 s, far too fast for the sleeping state to
 // follow within auto_tolerance): auto never hands over and runs the full model.
 TEST(AutoModel, ABearingThatDragsTheSpinFastKeepsTheFullModelToTheBit) {
-  Scene full_scene = load_scene(scene_path("gyro_reversal"));
+  Scene full_scene = load_scene(top_sim_test::scene_path("gyro_reversal"));
   Scene auto_scene = full_scene;
   auto_scene.model.automatic.enabled = true;
   Simulator full(full_scene), automatic(auto_scene);
