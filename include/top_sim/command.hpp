@@ -18,9 +18,16 @@ struct Command {
   std::optional<FrictionLaw> friction;   // replaces the friction law
   std::optional<double> static_friction; // mu_s (friction.static), >= mu(0) of the law in force
   std::optional<double> restitution;     // e_N (contact.restitution) in [0, 1]
+  // Finite contact (physics.md section 12), each >= 0: a fixed patch radius a [m] (replaces hertz), rolling
+  // resistance delta [m], air spin drag k [N m s] and drag c [N s/m].
+  std::optional<double> patch_radius;
+  std::optional<double> rolling_resistance;
+  std::optional<double> spin_drag;
+  std::optional<double> drag;
 
   bool empty() const {
-    return !inclination && !spin && !rotor_spin && !rotor_coupling && !friction && !static_friction && !restitution;
+    return !inclination && !spin && !rotor_spin && !rotor_coupling && !friction && !static_friction && !restitution &&
+           !patch_radius && !rolling_resistance && !spin_drag && !drag;
   }
 };
 

@@ -58,11 +58,13 @@ struct ModeMargins {
   double tilt = kNone;      // in contact: n . f_hat - cos(theta_max) ("fallen" when < 0); none for a ball
 };
 
-// Applies the stick impulse P = -K^-1 (v_t, 0) to u, omega and nu (W_diss is booked by the caller).
+// Applies the stick impulse P = -K^-1 (v_t, 0) to u, omega and nu (W_diss is booked by the caller); on a patch
+// with a torsional impulse that stops omega_n as well (physics.md section 12).
 void apply_stick_impulse(const Model& model, StateVector& y);
 
-// Applies a contact impulse P at the contact point to u (3-vector: in-plane and gap rate), omega and nu.
-void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y);
+// Applies a contact impulse P at the contact point to u (3-vector: in-plane and gap rate), omega and nu, and on a
+// patch a torsional impulse `torsion` about n [N m s].
+void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y, double torsion = 0.0);
 
 // Outcome of the closing rule (section 9): the mode to continue in, or a Painleve fault.
 struct ClosingResult {

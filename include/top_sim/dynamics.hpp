@@ -24,7 +24,29 @@ struct Dynamics {
   double nu_dot = 0.0;
   double dissipation = 0.0;        // W_diss' = mu N t_hat . v_t + c nu^2 (friction does no work while rolling)
   double psi_dot = 0.0;
+  // Finite contact (physics.md section 12); all 0 for a point contact.
+  double patch_radius = 0.0;       // a [m]
+  double drilling_torque = 0.0;    // n . M_n [N m]
+  Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // M_n n + M_r: the contact's torque besides rho x F [N m]
+  Eigen::Vector3d air_force = Eigen::Vector3d::Zero();   // -c v_cm [N]
+  Eigen::Vector3d air_torque = Eigen::Vector3d::Zero();  // -k omega [N m]
 };
+
+// The force (and, on a patch, the drilling torque) that keeps a contact stuck: v_c constant and, on a patch,
+// omega_n constant too (physics.md sections 9 and 12). A point contact: F = K^-1 b.
+struct StickForce {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();
+  double drilling_torque = 0.0;
+};
+StickForce stick_force(const Model& model, const StateVector& y);
+
+// How far a stuck contact is inside its stick set [N] (> 0: it holds): mu_s F_n - |F_t| for a point, the law's
+// limit surface on a patch (finite_contact.hpp).
+double stick_margin(const Model& model, const StickForce& stick);
+
+// Jellett's quantity lambda = L . (f f_hat + R n) [kg m^3 / s]: conserved on a point contact without air; on a
+// finite contact d lambda / dt = (couple + air_torque) . (f f_hat + R n) (physics.md section 12).
+double jellett(const Model& model, const StateVector& y);
 
 // Full evaluation in `mode`, including the margins of that mode.
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out);
@@ -33,6 +55,7 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
 // evaluation an FSAL method (dopri5) has just made there.
 struct ContactForceRecord {
   Eigen::Vector3d force = Eigen::Vector3d::Zero();  // F (N = F.z())
+  double drilling_torque = 0.0;                      // M_n on a patch
   double painleve = ModeMargins::kNone;
 };
 

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "top_sim/finite_contact.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/plane.hpp"
 
@@ -29,6 +30,7 @@ struct Top {
   double max_tilt = 1.2;              // theta_max [rad]
   bool has_rotor = false;
   Rotor rotor;
+  Material material;                  // young_modulus, poisson_ratio (for contact.patch_radius: hertz)
 };
 
 enum class NormalForceModel { constrained, static_approximation };
@@ -68,7 +70,16 @@ struct Model {
   AutoKind automatic;
   RegimeThresholds regime;
   ContactSettings contact;               // command: static_friction, restitution
+  FiniteContact finite_contact;          // command: patch_radius, rolling_resistance (physics.md section 12)
+  Air air;                               // command: spin_drag, drag
+  Material plane_material;               // the plane file's young_modulus, poisson_ratio
 };
+
+// True when the contact is the point of sections 3-4 with no air: the right-hand side then takes the point
+// contact's code path, so every result stays the same to the bit.
+inline bool point_contact(const Model& model) {
+  return !model.finite_contact.has_patch() && model.finite_contact.rolling_resistance == 0.0 && !model.air.active();
+}
 
 // mu_s in force: the given value, else mu(0) of the law; 0 where the paper's permanent slipping contact holds.
 double static_friction(const Model& model);

@@ -32,6 +32,8 @@ struct Snapshot {
   double slip = 0.0;
   double mu = 0.0;
   double normal_force = 0.0;
+  double drilling_torque = 0.0;   // n . M_n [N m] (physics.md section 12; 0 on a point contact)
+  double patch_radius = 0.0;      // a [m] (0 on a point contact and in flight)
   Eigen::Vector3d friction_force = Eigen::Vector3d::Zero();
   Eigen::Vector3d com_acceleration = Eigen::Vector3d::Zero();
   double phi = 0.0;               // direction of travel of the contact point, from h towards downhill

@@ -2,6 +2,7 @@
 #include "top_sim/command.hpp"
 
 #include <cmath>
+#include <utility>
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
@@ -42,6 +43,16 @@ std::string validate_in_kind(const Command& c, const Model& model) {
     if (!std::isfinite(e) || e < 0.0 || e > 1.0) return bad("restitution", e, "in [0, 1]");
     if (e > 0.0 && !has_contact_modes(model))
       return bad("restitution", e, "0 with model.normal_force static or model.kind adiabatic (permanent contact)");
+  }
+  const std::pair<const char*, const std::optional<double>*> finite_fields[] = {
+      {"patch_radius", &c.patch_radius}, {"rolling_resistance", &c.rolling_resistance},
+      {"spin_drag", &c.spin_drag}, {"drag", &c.drag}};
+  for (const auto& [name, value] : finite_fields) {
+    if (!*value) continue;
+    const double v = **value;
+    if (!std::isfinite(v) || v < 0.0) return bad(name, v, ">= 0 and finite");
+    if (v > 0.0 && (model.kind == ModelKind::adiabatic || model.automatic.enabled))
+      return bad(name, v, "0 with model.kind adiabatic or auto (the reduced model has no finite contact or air)");
   }
   if (c.static_friction || c.friction) {
     // mu_s must stay >= mu(0) of the law in force after the command.

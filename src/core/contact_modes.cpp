@@ -48,11 +48,13 @@ bool rolling_consistent(const Eigen::Vector3d& F, double static_friction) {
   return F.z() > 0.0 && std::hypot(F.x(), F.y()) <= static_friction * F.z();
 }
 
-void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y) {
+void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y, double torsion) {
   const detail::RigidBody b(model, y);
-  // dv_cm = P / m, I' d omega = rho x P; u = v_cm - omega x (f f_hat); the rotor keeps its absolute spin
-  // (the bearing is viscous: no impulsive torque), so nu changes by -d omega . f_hat.
-  const Eigen::Vector3d d_omega = b.inverse_inertia(b.rho.cross(P));
+  // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
+  // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
+  // -d omega . f_hat.
+  const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
+                                                 : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
   const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
   set_velocity3(y, b.u + d_u);
   set_angular_velocity(y, b.w + d_omega);
@@ -60,6 +62,22 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
 }
 
 void apply_stick_impulse(const Model& model, StateVector& y) {
+  if (model.finite_contact.has_patch()) {
+    // On a patch the stick also stops the pivoting: impulse P and torsional impulse Q with d v_t = -v_t and
+    // d omega_n = -omega_n, through the 4x4 response of dynamics.cpp's stick force (without rolling resistance,
+    // which has no impulse).
+    const detail::RigidBody b(model, y);
+    const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = b.inverse_inertia(n), c = -b.rho.cross(Ii_n);
+    Eigen::Matrix4d A;
+    A.topLeftCorner<3, 3>() = b.response_matrix();
+    A.topRightCorner<3, 1>() = c;
+    A.bottomLeftCorner<1, 3>() = c.transpose();
+    A(3, 3) = n.dot(Ii_n);
+    const Eigen::Vector3d v_c = b.contact_velocity();
+    const Eigen::Vector4d x = A.llt().solve(-Eigen::Vector4d(v_c.x(), v_c.y(), 0.0, b.w.z()));
+    apply_contact_impulse(model, x.head<3>(), y, x[3]);
+    return;
+  }
   const ContactResponse r = contact_response(model, y);
   // P = -K^-1 (v_t, 0): removes the tangential contact velocity and leaves n . v_c unchanged.
   const Eigen::Vector3d v_t(r.v_c.x(), r.v_c.y(), 0.0);
@@ -74,8 +92,18 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
   const double mu_s = static_friction(model);
   if (mu_s > 0.0) {
     const ContactResponse r = contact_response(model, y);
-    const double v_t = std::hypot(r.v_c.x(), r.v_c.y());
-    if (v_t <= model.contact.stick_speed && rolling_consistent(rolling_force(r), mu_s)) {
+    double v_t = std::hypot(r.v_c.x(), r.v_c.y());
+    bool holds;
+    if (point_contact(model)) {
+      holds = rolling_consistent(rolling_force(r), mu_s);
+    } else {  // physics.md section 12: the generalised slip must be small and the stick set must hold
+      const StickForce st = stick_force(model, y);
+      const FiniteContact& fc = model.finite_contact;
+      const double lever = drilling_lever(fc.pressure, patch_radius(fc, model.top.tip_radius, st.force.z()));
+      v_t = std::hypot(v_t, lever * y[idx::omega + 2]);
+      holds = st.force.z() > 0.0 && stick_margin(model, st) >= 0.0;
+    }
+    if (v_t <= model.contact.stick_speed && holds) {
       apply_stick_impulse(model, y);
       out.mode = ContactMode::rolling;
       out.stuck = true;

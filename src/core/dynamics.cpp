@@ -7,6 +7,7 @@
 
 #include "rigid_body.hpp"
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/angular_momentum.hpp"
 #include "top_sim/orientation.hpp"
 
 namespace top_sim {
@@ -48,30 +49,153 @@ void rolling_contact_force(const detail::RigidBody& b, Dynamics& out) {
   out.dissipation = 0.0;
 }
 
+// ---- finite contact (physics.md section 12) ----
+
+// Air acts on the body, not at the contact: its force joins gravity and its torque the torque-free part G, so
+// every mode's constraint solve sees it unchanged.
+void add_air(const Model& model, detail::RigidBody& b, Dynamics& out) {
+  if (!model.air.active()) return;
+  const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
+  out.air_force = -model.air.drag * v_cm;
+  out.air_torque = -model.air.spin_drag * b.w;
+  b.g += out.air_force / b.m;
+  b.Ii_G -= b.inverse_inertia(out.air_torque);
+}
+
+// Rolling resistance per newton of normal force: -delta omega_r / sqrt(|omega_r|^2 + omega_eps^2).
+Eigen::Vector3d rolling_resistance_per_newton(const Model& model, const detail::RigidBody& b) {
+  const double delta = model.finite_contact.rolling_resistance;
+  if (delta == 0.0) return Eigen::Vector3d::Zero();
+  const Eigen::Vector3d w_r(b.w.x(), b.w.y(), 0.0);
+  return -delta / std::sqrt(w_r.squaredNorm() + kRollingRateEps * kRollingRateEps) * w_r;
+}
+
+// Slipping on a finite contact: F = N d, couple = N tau with the coupled law of section 12; N keeps n . a_m = 0
+// as in slipping_force, with rho x d + tau in place of rho x d. A Hertz patch depends on N: a second pass takes
+// a from the first pass's N (the first from N = m g cos(alpha)).
+void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
+  const FiniteContact& fc = model.finite_contact;
+  const Eigen::Vector3d v_t = out.contact.v_t;
+  const double vt = v_t.norm(), omega_n = b.w.z(), v_eps = model.regularization_speed;
+  const double u_norm = std::hypot(b.u.x(), b.u.y());
+  const Eigen::Vector3d tau_r = rolling_resistance_per_newton(model, b);
+  double N = -b.m * b.g.z();
+  const int passes = fc.hertz && model.normal_force == NormalForceModel::constrained ? 2 : 1;
+  for (int pass = 0; pass < passes; ++pass) {
+    const double a = patch_radius(fc, b.R, N);
+    const double lever = drilling_lever(fc.pressure, a);
+    const double wy = lever * omega_n;
+    const double w_eps = std::sqrt(vt * vt + wy * wy + v_eps * v_eps);
+    const double s = std::hypot(vt, wy) / (u_norm + out.contact.rolling_speed + lever * std::abs(omega_n) + v_eps);
+    const double mu = friction_coefficient(model.friction, s);
+    const DrillingFactors k = drilling_factors(fc.law, fc.pressure, std::atan2(std::abs(wy), vt));
+    const Eigen::Vector3d d(-mu * k.force * v_t.x() / w_eps, -mu * k.force * v_t.y() / w_eps, 1.0);
+    const double m_n = -mu * lever * k.torque * wy / w_eps;  // drilling torque per newton
+    const Eigen::Vector3d tau = tau_r + Eigen::Vector3d(0.0, 0.0, m_n);
+    const Eigen::Vector3d Ii_T = b.inverse_inertia(b.rho.cross(d) + tau);
+    if (model.normal_force == NormalForceModel::constrained) {
+      const double A = Ii_T.cross(b.f_hat).z();
+      const double B = b.Ii_G.cross(b.f_hat).z();
+      const double denominator = 1.0 / b.m - b.f * A;
+      painleve = b.m * denominator;
+      const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
+      N = (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
+    } else {
+      painleve = ModeMargins::kNone;
+    }
+    out.mu = mu;
+    out.contact.slip = s;
+    out.contact.t_hat = k.force * v_t / w_eps;
+    out.patch_radius = a;
+    out.normal_force = N;
+    out.contact_force = N * d;
+    out.couple = N * tau;
+    out.drilling_torque = N * m_n;
+    out.omega_dot = N * Ii_T - b.Ii_G;
+  }
+  out.dissipation = -(out.contact_force.x() * v_t.x() + out.contact_force.y() * v_t.y()) - out.couple.dot(b.w);
+}
+
+// The stick force on a finite contact. On a patch the unknowns are F and M_n, and the constraints d/dt v_c = 0
+// and d/dt omega_n = 0: [K, -rho x I'^-1 n; n . I'^-1 (rho x .), n . I'^-1 n] plus the rolling resistance's
+// F_z column. Without a patch M_n = 0 and omega_n is free.
+StickForce stick_force_finite(const Model& model, const detail::RigidBody& b) {
+  const Eigen::Vector3d tau_r = rolling_resistance_per_newton(model, b);
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  Eigen::Matrix3d K = b.response_matrix();
+  K.col(2) -= b.rho.cross(b.inverse_inertia(tau_r));
+  StickForce out;
+  if (!model.finite_contact.has_patch()) {
+    out.force = K.partialPivLu().solve(b.response_bias());
+    return out;
+  }
+  const Eigen::Vector3d Ii_n = b.inverse_inertia(n);
+  Eigen::Matrix4d A;
+  A.topLeftCorner<3, 3>() = K;
+  A.topRightCorner<3, 1>() = -b.rho.cross(Ii_n);
+  for (int j = 0; j < 3; ++j) A(3, j) = Ii_n.dot(b.rho.cross(Eigen::Vector3d::Unit(j)));
+  A(3, 2) += n.dot(b.inverse_inertia(tau_r));
+  A(3, 3) = n.dot(Ii_n);
+  Eigen::Vector4d rhs;
+  rhs << b.response_bias(), n.dot(b.Ii_G);
+  const Eigen::Vector4d x = A.partialPivLu().solve(rhs);
+  out.force = x.head<3>();
+  out.drilling_torque = x[3];
+  return out;
+}
+
+void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b, Dynamics& out) {
+  const StickForce st = stick_force_finite(model, b);
+  out.contact_force = st.force;
+  out.normal_force = st.force.z();
+  const double Ft = std::hypot(st.force.x(), st.force.y());
+  out.mu = out.normal_force > 0.0 ? Ft / out.normal_force : 0.0;
+  out.patch_radius = patch_radius(model.finite_contact, b.R, out.normal_force);
+  out.drilling_torque = st.drilling_torque;
+  out.couple = out.normal_force * rolling_resistance_per_newton(model, b) + Eigen::Vector3d(0, 0, st.drilling_torque);
+  // The stuck patch does no work; the rolling resistance and a residual pivoting (omega_n ~ 0) do.
+  out.dissipation = -out.couple.dot(b.w);
+}
+
 // One mode's motion; a template so that the hot slipping path compiles without the other modes' code.
 template <ContactMode kMode>
 void motion(const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
-  const detail::RigidBody b(model, y);
+  detail::RigidBody b(model, y);
+  const bool finite = !point_contact(model);
+  if (finite) add_air(model, b, out);
   out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
   painleve = ModeMargins::kNone;
   if constexpr (kMode == ContactMode::slipping) {
-    slipping_force(model, b, out, painleve);
+    if (finite)
+      slipping_force_finite(model, b, out, painleve);
+    else
+      slipping_force(model, b, out, painleve);
   } else {
     if constexpr (kMode == ContactMode::rolling) {
-      rolling_contact_force(b, out);
+      if (finite)
+        rolling_contact_force_finite(model, b, out);
+      else
+        rolling_contact_force(b, out);
     } else {
       out.mu = 0.0;
       out.normal_force = 0.0;
       out.contact_force.setZero();
       out.dissipation = 0.0;
     }
-    out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.Ii_G;
+    if (finite)
+      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force) + out.couple) - b.Ii_G;
+    else
+      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.Ii_G;
   }
   out.friction_force = Eigen::Vector3d(out.contact_force.x(), out.contact_force.y(), 0.0);
   b.accelerations(out.contact_force, out.omega_dot, out.a_cm, out.a_m);
   if constexpr (kMode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
+  if (finite) {
+    const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
+    out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
+  }
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
 
@@ -99,12 +223,44 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
   ContactForceRecord record;
   evaluate_motion(model, mode, y, out, record.painleve);
   record.force = out.contact_force;
+  record.drilling_torque = out.drilling_torque;
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
   // A slipping contact that may stick: the stick function needs the rolling force at this state.
-  const Eigen::Vector3d F = rolling_force(contact_response(model, y));
-  const double consistency =
-      (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);
-  out.margins.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
+  const double mg = model.top.mass * model.plane.gravity;
+  if (point_contact(model)) {
+    const Eigen::Vector3d F = rolling_force(contact_response(model, y));
+    const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / mg;
+    out.margins.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
+    return;
+  }
+  // On a patch the whole generalised slip w = (v_t, Rbar omega_n) must be small, and the stick set must hold.
+  const StickForce st = stick_force(model, y);
+  const double lever = drilling_lever(model.finite_contact.pressure, patch_radius(model.finite_contact,
+                                                                                   model.top.tip_radius, st.force.z()));
+  const double w = std::hypot(out.contact.v_t.norm(), lever * y[idx::omega + 2]);
+  out.margins.transfer = std::max(w / model.contact.stick_speed - 1.0, -stick_margin(model, st) / mg);
+}
+
+StickForce stick_force(const Model& model, const StateVector& y) {
+  if (point_contact(model)) return {rolling_force(contact_response(model, y)), 0.0};
+  detail::RigidBody b(model, y);
+  Dynamics scratch;
+  add_air(model, b, scratch);
+  return stick_force_finite(model, b);
+}
+
+double stick_margin(const Model& model, const StickForce& st) {
+  const double mu_s = static_friction(model), N = st.force.z(), Ft = std::hypot(st.force.x(), st.force.y());
+  const FiniteContact& fc = model.finite_contact;
+  if (!fc.has_patch()) return mu_s * N - Ft;
+  const double lever = drilling_lever(fc.pressure, patch_radius(fc, model.top.tip_radius, N));
+  return top_sim::stick_margin(fc.law, fc.pressure, Ft, st.drilling_torque, mu_s, N, lever);
+}
+
+double jellett(const Model& model, const StateVector& y) {
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const Eigen::Vector3d arm = model.top.com_offset * f_hat + Eigen::Vector3d(0.0, 0.0, model.top.tip_radius);
+  return angular_momentum(model, y).dot(arm);
 }
 
 void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
@@ -114,6 +270,7 @@ void derivative(const Model& model, ContactMode mode, const StateVector& y, Stat
   evaluate_motion(model, mode, y, dyn, painleve);
   if (record) {
     record->force = dyn.contact_force;
+    record->drilling_torque = dyn.drilling_torque;
     record->painleve = painleve;
   }
   const Eigen::Vector3d f_dot = angular_velocity(y).cross(figure_axis(y));  // keeps |f_hat| in the exact flow
@@ -157,8 +314,11 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
       return !(static_friction(model) > 0.0 && has_contact_modes(model));  // else the stick function is missing
     case ContactMode::rolling:
       mg.lift = r.force.z();
-      mg.transfer = (static_friction(model) * r.force.z() - std::hypot(r.force.x(), r.force.y())) /
-                    (model.top.mass * model.plane.gravity);
+      if (point_contact(model))
+        mg.transfer = (static_friction(model) * r.force.z() - std::hypot(r.force.x(), r.force.y())) /
+                      (model.top.mass * model.plane.gravity);
+      else
+        mg.transfer = stick_margin(model, StickForce{r.force, r.drilling_torque}) / (model.top.mass * model.plane.gravity);
       return true;
     case ContactMode::flight:
       mg.lift = y[idx::gap];

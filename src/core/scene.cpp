@@ -188,6 +188,18 @@ YAML::Node resolve_named(const YAML::Node& n, const std::string& file, const std
   }
 }
 
+// young_modulus and poisson_ratio of a top or a plane file (physics.md section 12): both or neither.
+Material read_material(Section& s) {
+  Material m;
+  m.young_modulus = s.number("young_modulus", 0.0, positive, "> 0 [Pa]");
+  m.poisson_ratio = s.number("poisson_ratio", 0.0, [](double v) { return v > -1.0 && v <= 0.5; }, "in (-1, 0.5]");
+  if (s.has("poisson_ratio") != s.has("young_modulus"))
+    throw SceneError(s.file(), join(s.path(), s.has("young_modulus") ? "poisson_ratio" : "young_modulus"),
+                     "required with " + join(s.path(), s.has("young_modulus") ? "young_modulus" : "poisson_ratio") +
+                         " (a material needs both)");
+  return m;
+}
+
 Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin) {
   Section s(node, file, "top");
   Top top;
@@ -213,6 +225,7 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
     rotor_spin = r.number("spin", 0.0, spin_range, kSpinRange);
     r.finish();
   }
+  top.material = read_material(s);
   s.finish();
   return top;
 }
@@ -253,6 +266,24 @@ void read_contact(Section& root, const std::string& file, Model& model) {
   cs.restitution = c.number("restitution", cs.restitution, [](double v) { return v >= 0.0 && v <= 1.0; }, "in [0, 1]");
   cs.stick_speed = c.number("stick_speed", cs.stick_speed, positive, "> 0 [m/s]");
   cs.settle_speed = c.number("settle_speed", cs.settle_speed, positive, "> 0 [m/s]");
+  FiniteContact& fc = model.finite_contact;
+  if (c.has("patch_radius") && c.raw("patch_radius").IsScalar() && c.raw("patch_radius").Scalar() == "hertz") {
+    fc.hertz = true;
+    fc.effective_modulus = effective_modulus(model.top.material, model.plane_material);
+    if (!model.top.material.given() || !model.plane_material.given())
+      throw SceneError(file, "contact.patch_radius",
+                       "'hertz' needs both materials: top.young_modulus and top.poisson_ratio (given: " +
+                           std::string(model.top.material.given() ? "yes" : "no") +
+                           "), and the plane file's (friction's) young_modulus and poisson_ratio (given: " +
+                           (model.plane_material.given() ? "yes" : "no") + ")");
+  } else {
+    fc.patch_radius = c.number("patch_radius", 0.0, non_negative, ">= 0 [m], or hertz");
+  }
+  fc.pressure = c.word("patch_pressure", "hertz", {"hertz", "uniform"}) == "uniform" ? PatchPressure::uniform
+                                                                                     : PatchPressure::hertz;
+  fc.law = c.word("drilling_law", "exact", {"exact", "elliptic"}) == "elliptic" ? DrillingLaw::elliptic
+                                                                                : DrillingLaw::exact;
+  fc.rolling_resistance = c.number("rolling_resistance", 0.0, non_negative, ">= 0 [m]");
   c.finish();
   // The static normal force keeps the paper's permanent slipping contact: no rolling, no bounce.
   if (model.normal_force == NormalForceModel::static_approximation) {
@@ -266,6 +297,23 @@ void read_contact(Section& root, const std::string& file, Model& model) {
                        fmt(cs.restitution) + " > 0 needs flight and impacts, but model.normal_force = static "
                        "keeps a permanent contact (physics.md section 9); use model.normal_force: constrained "
                        "or contact.restitution: 0");
+  }
+}
+
+// air.* (physics.md section 12); a finite contact or air needs the full model (the reduced one has no drilling).
+void read_air(Section& root, const std::string& file, Model& model) {
+  Section a(root.raw("air"), file, "air");
+  model.air.spin_drag = a.number("spin_drag", 0.0, non_negative, ">= 0 [N m s]");
+  model.air.drag = a.number("drag", 0.0, non_negative, ">= 0 [N s/m]");
+  a.finish();
+  if (!point_contact(model) && (model.kind == ModelKind::adiabatic || model.automatic.enabled)) {
+    const char* key = model.finite_contact.has_patch()                  ? "contact.patch_radius"
+                      : model.finite_contact.rolling_resistance > 0.0 ? "contact.rolling_resistance"
+                      : model.air.spin_drag > 0.0                       ? "air.spin_drag"
+                                                                        : "air.drag";
+    throw SceneError(file, key, std::string("a finite contact or air needs model.kind: full (kind is ") +
+                                    kind_name(model) + "; the reduced model of physics.md section 7 has no drilling, "
+                                    "rolling resistance or air)");
   }
 }
 
@@ -368,7 +416,7 @@ static void reject_foreign_parameter(Section& s, const std::string& file, const 
   throw SceneError(file, join(s.path(), key),
                    show(s.raw(key)) + " is not a parameter of law " + name + " (it belongs to law " +
                        to_string(owner) + "); law " + name + " takes: " + friction_parameter_names(kind) +
-                       ", regularization_speed, static");
+                       ", regularization_speed, static, young_modulus, poisson_ratio");
 }
 
 static std::vector<std::pair<double, double>> read_friction_points(Section& s, const std::string& file) {
@@ -455,6 +503,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
     Section f(fnode, fsource, "friction");
     scene.model.friction = read_friction_law(f, fsource, scene.model.regularization_speed,
                                              scene.model.contact.static_friction);
+    scene.model.plane_material = read_material(f);
     f.finish();
     if (clamp_is_active(scene.model.friction))
       scene.warnings.push_back(fsource + ": friction law " + to_string(scene.model.friction.kind) +
@@ -463,6 +512,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
 
   read_model_options(s, file, scene.model);
   read_contact(s, file, scene.model);
+  read_air(s, file, scene.model);
   scene.model.regime = read_regime_thresholds(s, file);
   read_initial(s, file, scene.model, scene.initial);
   scene.integrator = read_integrator(s, file);

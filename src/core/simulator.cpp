@@ -239,6 +239,13 @@ void Simulator::apply_now(const Command& c) {
   if (c.static_friction) model_.contact.static_friction = *c.static_friction;
   if (c.restitution) model_.contact.restitution = *c.restitution;
   if (c.rotor_coupling) model_.top.rotor.coupling = *c.rotor_coupling;
+  if (c.patch_radius) {
+    model_.finite_contact.hertz = false;
+    model_.finite_contact.patch_radius = *c.patch_radius;
+  }
+  if (c.rolling_resistance) model_.finite_contact.rolling_resistance = *c.rolling_resistance;
+  if (c.spin_drag) model_.air.spin_drag = *c.spin_drag;
+  if (c.drag) model_.air.drag = *c.drag;
   if (c.spin) {
     set_angular_velocity(y_, angular_velocity(y_) + (*c.spin - spin) * f_hat);
     if (model_.top.has_rotor) y_[idx::nu] = rotor_spin - *c.spin;  // the rotor keeps its absolute spin
@@ -761,6 +768,8 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;
     s.normal_force = dyn.normal_force;
+    s.drilling_torque = dyn.drilling_torque;
+    s.patch_radius = dyn.patch_radius;
     s.friction_force = dyn.friction_force;
     s.com_acceleration = dyn.a_cm;
   }
