@@ -50,6 +50,38 @@ void rhs_frictionless(benchmark::State& bs) {
 }
 BENCHMARK(rhs_frictionless);
 
+// The finite contact of physics.md section 12 at the same nutating state (issue 32: at most 1.3x the point
+// contact's right-hand side). `terms`: 0 fixed patch, 1 Hertz patch, 2 Hertz patch with the elliptic law,
+// 3 Hertz patch with rolling resistance and air.
+void rhs_finite(benchmark::State& bs, int terms) {
+  Scene scene = default_scene();
+  const StateVector y = nutating_state(scene);
+  FiniteContact& fc = scene.model.finite_contact;
+  if (terms == 0) {
+    fc.patch_radius = 1.0e-4;
+  } else {
+    fc.hertz = true;
+    fc.effective_modulus = effective_modulus({6.9e10, 0.33}, {3.0e9, 0.37});
+  }
+  if (terms == 2) fc.law = DrillingLaw::elliptic;
+  if (terms == 3) {
+    fc.rolling_resistance = 1.0e-5;
+    scene.model.air.spin_drag = 1.0e-8;
+    scene.model.air.drag = 1.0e-3;
+  }
+  StateVector dydt{};
+  model_derivative(scene.model, ContactMode::slipping, y, dydt);  // builds the exact law's table outside the timing
+  for (auto _ : bs) {
+    benchmark::DoNotOptimize(y);
+    model_derivative(scene.model, ContactMode::slipping, y, dydt);
+    benchmark::DoNotOptimize(dydt);
+  }
+}
+BENCHMARK_CAPTURE(rhs_finite, fixed_patch_exact, 0);
+BENCHMARK_CAPTURE(rhs_finite, hertz_exact, 1);
+BENCHMARK_CAPTURE(rhs_finite, hertz_elliptic, 2);
+BENCHMARK_CAPTURE(rhs_finite, hertz_exact_rolling_air, 3);
+
 // One simulated second of the default scene from its tilted start (the transient: the hardest second).
 // Fixed steps: the largest power-of-ten-ish step that stays bounded at 200 rad/s (stability map, docs/performance.md).
 void simulated_second(benchmark::State& bs, Method method, double dt, double t0) {

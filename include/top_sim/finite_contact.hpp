@@ -49,15 +49,16 @@ double patch_radius(const FiniteContact& c, double tip_radius, double normal_for
 // Drilling lever Rbar: 3 pi a / 16 (Hertzian pressure) or 2 a / 3 (uniform).
 double drilling_lever(PatchPressure p, double a);
 
-// The law's factors at slip angle theta = atan(Rbar |omega_n| / |v_t|) in [0, pi/2]: with
+// The law's factors at the sliding speed |v_t| and the pivoting speed Rbar |omega_n|: with
 // |w|_eps = sqrt(|v_t|^2 + Rbar^2 omega_n^2 + v_eps^2),
 //   F = -mu N force v_t / |w|_eps,   M_n = -mu N Rbar torque (Rbar omega_n) / |w|_eps.
-// elliptic: both 1; exact: the patch integrals divided by cos(theta) and sin(theta), from a table in theta.
+// elliptic: both 1; exact: the patch integrals divided by cos(theta) and sin(theta), theta the slip angle
+// atan(Rbar |omega_n| / |v_t|), from a table.
 struct DrillingFactors {
   double force = 1.0;
   double torque = 1.0;
 };
-DrillingFactors drilling_factors(DrillingLaw law, PatchPressure p, double theta);
+DrillingFactors drilling_factors(DrillingLaw law, PatchPressure p, double slip_speed, double pivot_speed);
 
 // The patch integrals themselves, by quadrature over the patch (for the table and the tests): |F| / (mu N) and
 // |M_n| / (mu N Rbar) at a omega_n / |v_t| = ratio (ratio = inf: pure pivoting). `n` points per radius.

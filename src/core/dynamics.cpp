@@ -77,23 +77,26 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynam
   const FiniteContact& fc = model.finite_contact;
   const Eigen::Vector3d v_t = out.contact.v_t;
   const double vt = v_t.norm(), omega_n = b.w.z(), v_eps = model.regularization_speed;
-  const double u_norm = std::hypot(b.u.x(), b.u.y());
+  const double speed_sum = std::sqrt(b.u.x() * b.u.x() + b.u.y() * b.u.y()) + out.contact.rolling_speed + v_eps;
   const Eigen::Vector3d tau_r = rolling_resistance_per_newton(model, b);
+  const bool constrained = model.normal_force == NormalForceModel::constrained;
   double N = -b.m * b.g.z();
-  const int passes = fc.hertz && model.normal_force == NormalForceModel::constrained ? 2 : 1;
+  const int passes = fc.hertz && constrained ? 2 : 1;
   for (int pass = 0; pass < passes; ++pass) {
     const double a = patch_radius(fc, b.R, N);
     const double lever = drilling_lever(fc.pressure, a);
-    const double wy = lever * omega_n;
-    const double w_eps = std::sqrt(vt * vt + wy * wy + v_eps * v_eps);
-    const double s = std::hypot(vt, wy) / (u_norm + out.contact.rolling_speed + lever * std::abs(omega_n) + v_eps);
+    const double wy = lever * omega_n, pivot = std::abs(wy);
+    const double w2 = vt * vt + wy * wy;
+    const double w_eps = std::sqrt(w2 + v_eps * v_eps);
+    const double s = std::sqrt(w2) / (speed_sum + pivot);
     const double mu = friction_coefficient(model.friction, s);
-    const DrillingFactors k = drilling_factors(fc.law, fc.pressure, std::atan2(std::abs(wy), vt));
-    const Eigen::Vector3d d(-mu * k.force * v_t.x() / w_eps, -mu * k.force * v_t.y() / w_eps, 1.0);
+    const DrillingFactors k = drilling_factors(fc.law, fc.pressure, vt, pivot);
+    const double force_per_speed = mu * k.force / w_eps;
+    const Eigen::Vector3d d(-force_per_speed * v_t.x(), -force_per_speed * v_t.y(), 1.0);
     const double m_n = -mu * lever * k.torque * wy / w_eps;  // drilling torque per newton
-    const Eigen::Vector3d tau = tau_r + Eigen::Vector3d(0.0, 0.0, m_n);
-    const Eigen::Vector3d Ii_T = b.inverse_inertia(b.rho.cross(d) + tau);
-    if (model.normal_force == NormalForceModel::constrained) {
+    const Eigen::Vector3d Ii_T = b.inverse_inertia(b.rho.cross(d) + tau_r + Eigen::Vector3d(0.0, 0.0, m_n));
+    if (constrained) {
+      // The drilling torque does not enter A: (I'^-1 n x f_hat) . n = 0 for the axisymmetric inertia.
       const double A = Ii_T.cross(b.f_hat).z();
       const double B = b.Ii_G.cross(b.f_hat).z();
       const double denominator = 1.0 / b.m - b.f * A;
@@ -103,13 +106,14 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynam
     } else {
       painleve = ModeMargins::kNone;
     }
+    if (pass + 1 < passes) continue;
     out.mu = mu;
     out.contact.slip = s;
-    out.contact.t_hat = k.force * v_t / w_eps;
+    out.contact.t_hat = (mu > 0.0 ? force_per_speed / mu : k.force / w_eps) * v_t;
     out.patch_radius = a;
     out.normal_force = N;
     out.contact_force = N * d;
-    out.couple = N * tau;
+    out.couple = N * (tau_r + Eigen::Vector3d(0.0, 0.0, m_n));
     out.drilling_torque = N * m_n;
     out.omega_dot = N * Ii_T - b.Ii_G;
   }
@@ -192,7 +196,7 @@ void motion(const Model& model, const StateVector& y, Dynamics& out, double& pai
   if constexpr (kMode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
-  if (finite) {
+  if (finite && model.air.active()) {
     const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
     out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
   }

@@ -101,43 +101,67 @@ PatchIntegrals patch_integrals(PatchPressure pressure, double ratio, int n) {
 
 namespace {
 
-// The exact law's factors on theta in [0, pi/2]: kNodes nodes, cubic Hermite with central-difference slopes
-// (C1, so an adaptive step sees a smooth right-hand side). Built once per pressure, on first use (~0.1 s).
+// The exact law's factors on t = Rbar |omega_n| / (|v_t| + Rbar |omega_n|) in [0, 1] (t = tan(theta) / (1 +
+// tan(theta)): a division, no trigonometry, per right-hand side). kNodes nodes, cubic Hermite with
+// central-difference slopes stored per node (C1, so an adaptive step sees a smooth right-hand side). Built once per
+// pressure, on first use (~0.1 s).
 struct ExactTable {
   static constexpr int kNodes = 129;
-  std::array<double, kNodes> force{}, torque{}, f{}, g{};  // factors, and the integrals themselves (limit surface)
-  double h = 0.0;
+  struct Node {
+    double force, force_slope, torque, torque_slope;  // slopes per node interval
+  };
+  std::array<Node, kNodes> node{};
+  std::array<double, kNodes> f{}, g{};  // the integrals themselves: the limit surface (f, g)(t)
+  static constexpr double kStep = 1.0 / (kNodes - 1);
 
   explicit ExactTable(PatchPressure p) {
-    h = (M_PI / 2.0) / (kNodes - 1);
     const double lever = drilling_lever(p, 1.0);
     for (int i = 0; i < kNodes; ++i) {
-      // The end nodes are the limits theta -> 0 and pi/2, taken a hair inside.
-      const double theta = std::clamp(i * h, 1e-6, M_PI / 2.0 - 1e-6);
-      const double ratio = std::tan(theta) / lever;  // a omega_n / |v_t| with Rbar omega_n / |v_t| = tan(theta)
+      // The end nodes are the limits t -> 0 and 1, taken a hair inside.
+      const double t = std::clamp(i * kStep, 1e-7, 1.0 - 1e-7);
+      const double theta = std::atan2(t, 1.0 - t);
+      const double ratio = t / ((1.0 - t) * lever);  // a omega_n / |v_t|
       const PatchIntegrals I = patch_integrals(p, ratio, 2000);
       f[i] = I.force;
       g[i] = I.torque;
-      force[i] = I.force / std::cos(theta);
-      torque[i] = I.torque / std::sin(theta);
+      node[i].force = I.force / std::cos(theta);
+      node[i].torque = I.torque / std::sin(theta);
     }
     f[0] = 1.0;
-    g[kNodes - 1] = 1.0;
-    f[kNodes - 1] = 0.0;
     g[0] = 0.0;
+    f[kNodes - 1] = 0.0;
+    g[kNodes - 1] = 1.0;
+    for (int i = 0; i < kNodes; ++i) {
+      const int lo = std::max(i - 1, 0), hi = std::min(i + 1, kNodes - 1);
+      node[i].force_slope = (node[hi].force - node[lo].force) / (hi - lo);
+      node[i].torque_slope = (node[hi].torque - node[lo].torque) / (hi - lo);
+    }
   }
 
-  static double hermite(const std::array<double, kNodes>& v, double x, double h) {
-    const int i = std::clamp(static_cast<int>(x / h), 0, kNodes - 2);
-    const double t = x / h - i;
-    auto slope = [&](int k) {
-      if (k == 0) return v[1] - v[0];
-      if (k == kNodes - 1) return v[k] - v[k - 1];
-      return 0.5 * (v[k + 1] - v[k - 1]);
+  DrillingFactors at(double t) const {
+    const double x = std::clamp(t, 0.0, 1.0) * (kNodes - 1);
+    const int i = std::min(static_cast<int>(x), kNodes - 2);
+    const double u = x - i, u2 = u * u, u3 = u2 * u;
+    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
+    const Node& a = node[i];
+    const Node& b = node[i + 1];
+    return {h00 * a.force + h10 * a.force_slope + h01 * b.force + h11 * b.force_slope,
+            h00 * a.torque + h10 * a.torque_slope + h01 * b.torque + h11 * b.torque_slope};
+  }
+
+  // The limit surface's point at t, by the same Hermite on the integrals (slopes by central differences).
+  Eigen::Vector2d surface(double t) const {
+    const double x = std::clamp(t, 0.0, 1.0) * (kNodes - 1);
+    const int i = std::min(static_cast<int>(x), kNodes - 2);
+    const double u = x - i;
+    auto slope = [](const std::array<double, kNodes>& v, int k) {
+      const int lo = std::max(k - 1, 0), hi = std::min(k + 1, kNodes - 1);
+      return (v[hi] - v[lo]) / (hi - lo);
     };
-    const double t2 = t * t, t3 = t2 * t;
-    return (2 * t3 - 3 * t2 + 1) * v[i] + (t3 - 2 * t2 + t) * slope(i) + (-2 * t3 + 3 * t2) * v[i + 1] +
-           (t3 - t2) * slope(i + 1);
+    const double u2 = u * u, u3 = u2 * u;
+    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
+    return {h00 * f[i] + h10 * slope(f, i) + h01 * f[i + 1] + h11 * slope(f, i + 1),
+            h00 * g[i] + h10 * slope(g, i) + h01 * g[i + 1] + h11 * slope(g, i + 1)};
   }
 };
 
@@ -152,11 +176,10 @@ const ExactTable& exact_table(PatchPressure p) {
 
 }  // namespace
 
-DrillingFactors drilling_factors(DrillingLaw law, PatchPressure p, double theta) {
+DrillingFactors drilling_factors(DrillingLaw law, PatchPressure p, double slip_speed, double pivot_speed) {
   if (law == DrillingLaw::elliptic) return {};
-  const ExactTable& t = exact_table(p);
-  const double x = std::clamp(theta, 0.0, M_PI / 2.0);
-  return {ExactTable::hermite(t.force, x, t.h), ExactTable::hermite(t.torque, x, t.h)};
+  const double sum = slip_speed + pivot_speed;
+  return exact_table(p).at(sum > 0.0 ? pivot_speed / sum : 0.0);
 }
 
 double stick_margin(DrillingLaw law, PatchPressure p, double tangential_force, double drilling_torque,
@@ -167,19 +190,17 @@ double stick_margin(DrillingLaw law, PatchPressure p, double tangential_force, d
   const double my = lever > 0.0 ? std::abs(drilling_torque) / (limit * lever) : 0.0;
   const double r = std::hypot(fx, my);
   if (law == DrillingLaw::elliptic || r == 0.0) return limit * (1.0 - r);
-  // The limit surface (f(theta), g(theta)) turns monotonically from (1, 0) to (0, 1): find its point in the
+  // The limit surface (f, g)(t) turns monotonically from (1, 0) to (0, 1): find its point in the
   // direction of (fx, my) by bisection on the table's angle.
-  const ExactTable& t = exact_table(p);
+  const ExactTable& table = exact_table(p);
   const double beta = std::atan2(my, fx);
-  double lo = 0.0, hi = M_PI / 2.0;
+  double lo = 0.0, hi = 1.0;
   for (int it = 0; it < 40; ++it) {
     const double mid = 0.5 * (lo + hi);
-    const double angle = std::atan2(ExactTable::hermite(t.g, mid, t.h), ExactTable::hermite(t.f, mid, t.h));
-    (angle < beta ? lo : hi) = mid;
+    const Eigen::Vector2d point = table.surface(mid);
+    (std::atan2(point.y(), point.x()) < beta ? lo : hi) = mid;
   }
-  const double th = 0.5 * (lo + hi);
-  const double surface = std::hypot(ExactTable::hermite(t.f, th, t.h), ExactTable::hermite(t.g, th, t.h));
-  return limit * (1.0 - r / surface);
+  return limit * (1.0 - r / table.surface(0.5 * (lo + hi)).norm());
 }
 
 }  // namespace top_sim

@@ -19,7 +19,7 @@ namespace {
 PatchIntegrals exact_law(PatchPressure p, double ratio) {
   const double lever = drilling_lever(p, 1.0);
   const double theta = std::atan(ratio * lever);
-  const DrillingFactors k = drilling_factors(DrillingLaw::exact, p, theta);
+  const DrillingFactors k = drilling_factors(DrillingLaw::exact, p, 1.0, ratio * lever);
   return {k.force * std::cos(theta), k.torque * std::sin(theta)};
 }
 
@@ -259,7 +259,11 @@ TEST(FiniteContactScene, BadInputNamesKeyValueAndRange) {
   const std::string base = "top: aluminium\nfriction: pmma\n";
   EXPECT_NE(error(base + "contact: {patch_radius: -1.0e-4}").find("contact.patch_radius: -1e-04 is out of range; must be >= 0 [m], or hertz"), std::string::npos);
   EXPECT_NE(error(base + "contact: {patch_radius: .nan}").find("contact.patch_radius"), std::string::npos);
-  EXPECT_NE(error(base + "contact: {patch_radius: hertz}").find("'hertz' needs both materials"), std::string::npos);
+  // A top without its material (the shipped tops and planes carry theirs).
+  EXPECT_NE(error("top: {mass: 0.025}\nfriction: pmma\ncontact: {patch_radius: hertz}")
+                .find("contact.patch_radius: 'hertz' needs both materials: top.young_modulus and top.poisson_ratio (given: no)"),
+            std::string::npos);
+  EXPECT_EQ(error(base + "contact: {patch_radius: hertz}"), "accepted");
   EXPECT_NE(error("top: {young_modulus: 7.0e10, poisson_ratio: 0.6}\n").find("top.poisson_ratio: 0.6 is out of range; must be in (-1, 0.5]"), std::string::npos);
   EXPECT_NE(error("top: {young_modulus: 7.0e10}\n").find("top.poisson_ratio: required"), std::string::npos);
   EXPECT_NE(error(base + "contact: {rolling_resistance: -1}").find("contact.rolling_resistance: -1 is out of range; must be >= 0"), std::string::npos);
