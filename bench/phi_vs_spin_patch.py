@@ -19,6 +19,7 @@ Writes the raw per-run numbers and the fits to the JSON file; prints a table. Ex
 import argparse
 import csv
 import json
+import math
 import os
 import subprocess
 import sys
@@ -48,6 +49,29 @@ AIR_TOPS = ('wood',)
 DURATION_PER_SPIN = 0.5
 MIN_DURATION = 30.0  # s: the slowest spins still get many precession periods
 RATE = 20.0  # Hz of the CSV: well above the precession, below the nutation we do not need
+
+
+def yaml_numbers(path):
+    # The flat `key: number` lines of a shipped top or plane file (enough for mass and the elastic constants).
+    out = {}
+    for line in open(path):
+        key, _, rest = line.partition(':')
+        try:
+            out[key.strip()] = float(rest.split('#')[0])
+        except ValueError:
+            pass
+    return out
+
+
+def sleeping_patch(top, plane, alpha):
+    # Hertz radius a and lever 3 pi a / 16 of physics.md section 12 at the sleeping state's N = m g cos(alpha).
+    t = yaml_numbers(os.path.join(REPO, 'config', 'tops', top + '.yaml'))
+    p = yaml_numbers(os.path.join(REPO, 'config', 'planes', plane + '.yaml'))
+    e_star = 1.0 / ((1 - t['poisson_ratio'] ** 2) / t['young_modulus'] + (1 - p['poisson_ratio'] ** 2) / p['young_modulus'])
+    n = t['mass'] * 9.81 * math.cos(alpha)  # plane.gravity's default
+    a = (3 * n * t['tip_radius'] / (4 * e_star)) ** (1.0 / 3.0)
+    return {'top': top, 'plane': plane, 'alpha': alpha, 'E_star': e_star, 'N': n, 'a': a,
+            'Rbar': 3 * math.pi * a / 16, 'Rbar_over_R': 3 * math.pi * a / 16 / t['tip_radius']}
 
 
 def scene_text(top, plane, alpha, spin, contact, duration, air=0.0):
@@ -117,9 +141,13 @@ def main():
     ap.add_argument('--json', default=os.path.join(REPO, 'docs', 'data', 'phi_vs_spin_patch.json'))
     ap.add_argument('--spins', default='50,100,150,200,250,300,350,400')
     ap.add_argument('--alphas', default='0.09,0.15')
+    ap.add_argument('--refit', action='store_true', help='no runs: refit and rewrite the runs already in --json')
     args = ap.parse_args()
     spins = [float(s) for s in args.spins.split(',')]
     alphas = [float(a) for a in args.alphas.split(',')]
+    if args.refit:
+        old = json.load(open(args.json))
+        return report(args, old['runs'], sorted({r['alpha'] for r in old['runs']}), old.get('commit', '?'))
     tmp = tempfile.mkdtemp(prefix='phi_vs_spin_')
     # Scenes resolve `top: NAME` in the config/ folder next to their own folder: point it at this checkout's.
     os.symlink(os.path.join(REPO, 'config'), os.path.join(tmp, 'config'))
@@ -136,6 +164,13 @@ def main():
                     print('%-9s %-5s a=%.2f w0=%5.0f %-8s phi=%s std=%s spin=%s %s' % (
                         top, plane, alpha, spin, cname, rec.get('phi'), rec.get('phi_std'), rec.get('spin_mean'),
                         rec.get('regime')), flush=True)
+    git = subprocess.run(['git', '-C', REPO, 'rev-parse', '--short', 'HEAD'], stdout=subprocess.PIPE,
+                         universal_newlines=True).stdout.strip()
+    return report(args, runs, alphas, git)
+
+
+def report(args, runs, alphas, git):
+    # The fits per top, inclination and contact; writes the JSON and prints the table.
     fits = []
     for top, plane in PAIRS:
         for alpha in alphas:
@@ -149,12 +184,11 @@ def main():
                              'dphi_domega': b, 'dphi_domega_se': se, 'intercept': a, 'max_residual': worst,
                              'phi_range': max(r['phi'] for r in ok) - min(r['phi'] for r in ok),
                              'phi_star_point': ok[0]['phi_star_point']})
-    git = subprocess.run(['git', '-C', REPO, 'rev-parse', '--short', 'HEAD'], stdout=subprocess.PIPE,
-                         universal_newlines=True).stdout.strip()
     out = {'generator': 'bench/phi_vs_spin_patch.py', 'commit': git, 'binary': args.bin,
            'duration_per_spin_s': DURATION_PER_SPIN, 'min_duration_s': MIN_DURATION, 'csv_rate_hz': RATE,
            'window': 'last half of the run', 'air_stokes': {'drag': STOKES_DRAG, 'spin_drag': STOKES_SPIN_DRAG,
-                                                            'radius_assumed': AIR_RADIUS, 'viscosity': AIR_VISCOSITY}, 'runs': runs, 'fits': fits}
+                                                            'radius_assumed': AIR_RADIUS, 'viscosity': AIR_VISCOSITY},
+           'patches': [sleeping_patch(t, p, a) for t, p in PAIRS for a in alphas], 'runs': runs, 'fits': fits}
     with open(args.json, 'w') as f:
         json.dump(out, f, indent=1)
     print('\n%-9s %-5s %5s %-8s %14s %10s %12s %12s' % ('top', 'plane', 'alpha', 'contact', 'dphi/dw [s]', 'se',
