@@ -79,10 +79,11 @@ top_sim::Scene pivot_scene(const std::string& config_dir) {
   return top_sim::parse_scene_text(yaml, "pivot", config_dir);
 }
 
-double top_sim_spin(const top_sim::Scene& s) {
+double top_sim_spin(const top_sim::Scene& s, long* steps = nullptr) {
   top_sim::Simulator sim(s);
   sim.advance_to(kPivotT);
   if (sim.fault() != top_sim::ContactFault::none) throw std::runtime_error("top_sim: " + sim.fault_message());
+  if (steps) *steps = static_cast<long>(sim.stats().steps);
   const top_sim::StateVector& y = sim.state();
   return top_sim::angular_velocity(y).dot(top_sim::figure_axis(y));
 }
@@ -131,7 +132,14 @@ struct MjRun {
 struct Row {
   std::string engine, setting;
   double spin, error, cpu_per_s;
+  long steps;
 };
+
+std::string fmt(const char* f, double v) {
+  char buf[64];
+  std::snprintf(buf, sizeof buf, f, v);
+  return buf;
+}
 
 }  // namespace
 
@@ -152,9 +160,10 @@ int pivot(const std::string& config_dir, int reps, const std::string& csv) {
     s.integrator.method = top_sim::Method::dopri5;
     s.integrator.rtol = rtol;
     s.integrator.atol = 1e-2 * rtol;  // the convention of peer_mujoco's ladders
-    const double w = top_sim_spin(s);
+    long steps = 0;
+    const double w = top_sim_spin(s, &steps);
     const double cpu = cpu_per_run([&] { top_sim_spin(s); }, reps);
-    rows.push_back({"top_sim dopri5", "rtol " + num(rtol), w, w - exact, cpu / kPivotT});
+    rows.push_back({"top_sim dopri5", fmt("rtol %g", rtol), w, w - exact, cpu / kPivotT, steps});
   }
   for (const char* cone : {"pyramidal", "elliptic"})
     for (double dt : {1e-4, 2e-4, 5e-4, 1e-3, 2e-3}) {
@@ -163,19 +172,19 @@ int pivot(const std::string& config_dir, int reps, const std::string& csv) {
       const double cpu = cpu_per_run([&] { run.spin(); }, reps);
       char setting[64];
       std::snprintf(setting, sizeof setting, "%s cone, RK4 dt %g", cone, dt);
-      rows.push_back({"MuJoCo condim 4", setting, w, w - exact, cpu / kPivotT});
+      rows.push_back({"MuJoCo condim 4", setting, w, w - exact, cpu / kPivotT, std::lround(kPivotT / dt)});
     }
   std::printf("| engine | setting | spin at %g s [rad/s] | minus closed form [rad/s] | error / spin lost | CPU per "
-              "simulated s [ms] |\n|---|---|---|---|---|---|\n", kPivotT);
+              "simulated s [ms] | steps |\n|---|---|---|---|---|---|---|\n", kPivotT);
   for (const Row& r : rows)
-    std::printf("| %s | %s | %.9f | %.3g | %.2g | %.3g |\n", r.engine.c_str(), r.setting.c_str(), r.spin, r.error,
-                r.error / (rate * kPivotT), 1e3 * r.cpu_per_s);
+    std::printf("| %s | %s | %.9f | %.3g | %.2g | %.3g | %ld |\n", r.engine.c_str(), r.setting.c_str(), r.spin,
+                r.error, r.error / (rate * kPivotT), 1e3 * r.cpu_per_s, r.steps);
   if (!csv.empty()) {
     std::ofstream out(csv);
-    out << "engine,setting,spin,closed_form,error,cpu_per_sim_second\n";
+    out << "engine,setting,spin,closed_form,error,cpu_per_sim_second,steps\n";
     for (const Row& r : rows)
       out << r.engine << ',' << r.setting << ',' << num(r.spin) << ',' << num(exact) << ',' << num(r.error) << ','
-          << num(r.cpu_per_s) << '\n';
+          << num(r.cpu_per_s) << ',' << r.steps << '\n';
   }
   return 0;
 }
