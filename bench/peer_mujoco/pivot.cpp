@@ -195,7 +195,8 @@ int pivot(const std::string& config_dir, int reps, const std::string& csv) {
     std::ofstream out(csv);
     out << "engine,setting,spin,closed_form,error,cpu_per_sim_second,steps,late_half_rate\n";
     for (const Row& r : rows)
-      out << r.engine << ',' << r.setting << ',' << num(r.spin) << ',' << num(exact) << ',' << num(r.error) << ','
+      // the setting holds a comma: quoted
+      out << r.engine << ",\"" << r.setting << "\"," << num(r.spin) << ',' << num(exact) << ',' << num(r.error) << ','
           << num(r.cpu_per_s) << ',' << r.steps << ',' << num(r.late_rate) << '\n';
   }
   return 0;
