@@ -12,7 +12,7 @@ the spin (physics.md section 5), so every spin gets the same relaxation in scale
 of a straight-line fit of phi against the window's mean spin, per top, inclination and contact.
 
   bench/phi_vs_spin_patch.py [--bin build/bin/top_sim_run] [--json docs/data/phi_vs_spin_patch.json]
-                             [--spins 50,100,...] [--alphas 0.09,0.15]
+                             [--spins 50,100,...] [--alphas 0.09,0.15] [--refit]
 
 Writes the raw per-run numbers and the fits to the JSON file; prints a table. Exit 0 whatever the figures.
 """
