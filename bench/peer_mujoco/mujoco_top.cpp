@@ -34,6 +34,10 @@ std::string num(double v) {
   return buf;
 }
 
+Eigen::Quaterniond quaternion(const double* q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]); }
+
+}  // namespace
+
 // mj_loadXML reads files only: the text goes through a virtual file system (2 MB, so on the heap).
 mjModel* compile(const std::string& xml) {
   auto vfs = std::make_unique<mjVFS>();
@@ -48,10 +52,6 @@ mjModel* compile(const std::string& xml) {
   if (!m) throw std::runtime_error(std::string("MuJoCo: the MJCF does not compile: ") + error);
   return m;
 }
-
-Eigen::Quaterniond quaternion(const double* q) { return Eigen::Quaterniond(q[0], q[1], q[2], q[3]); }
-
-}  // namespace
 
 std::string mjcf(const top_sim::Scene& scene, double dt) {
   const top_sim::Top& top = scene.model.top;

@@ -13,6 +13,9 @@ struct mjData_;
 
 namespace peer {
 
+// An MJCF text compiled through MuJoCo's in-memory file system (throws with MuJoCo's message).
+mjModel_* compile(const std::string& xml);
+
 // The MJCF of `scene`'s top and plane (angles in radians: <compiler angle="radian"/>).
 std::string mjcf(const top_sim::Scene& scene, double dt);
 

@@ -1,4 +1,4 @@
-// peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]
+// peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot]
 // MuJoCo side by side (issue 21 item 5): the frictionless top of config/scenes/frictionless.yaml over a MuJoCo RK4
 // dt ladder, a top_sim dopri5 rtol ladder and top_sim rk4, implicit_midpoint and fitted_midpoint dt ladders, timed
 // interleaved in this
@@ -11,7 +11,7 @@
 // difference of that tilt from the reference's at the run's samples in the last second, over the same peak-to-peak
 // (about 0 in phase, about 1 out of phase, whatever the frequency). --check runs the cheap
 // assertions of the ctest smoke test; --softness splits MuJoCo's error into step and soft contact; --mjcf prints the
-// model.
+// model; --pivot runs the pivoting upright top with condim 4 instead (pivot.cpp).
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -26,6 +26,7 @@
 #include <vector>
 
 #include "mujoco_top.hpp"
+#include "pivot.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/nutation.hpp"
 #include "top_sim/scene.hpp"
@@ -638,12 +639,12 @@ int softness(const Scene& scene) {
   return 0;
 }
 
-const char* kUsage = "usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness]";
+const char* kUsage = "usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot]";
 
 struct Options {
   std::string config = TOP_SIM_PEER_CONFIG_DIR, csv;
   int reps = 5;
-  bool check = false, print_mjcf = false, softness = false;
+  bool check = false, print_mjcf = false, softness = false, pivot = false;
 };
 
 int repetitions(const std::string& text) {
@@ -664,6 +665,7 @@ Options parse(int argc, char** argv) {
     else if (a == "--check") o.check = true;
     else if (a == "--mjcf") o.print_mjcf = true;
     else if (a == "--softness") o.softness = true;
+    else if (a == "--pivot") o.pivot = true;
     else throw std::invalid_argument(kUsage);
   }
   return o;
@@ -694,6 +696,7 @@ int bench(const Scene& scene, const Options& opt) {
 int main(int argc, char** argv) {
   try {
     const Options opt = parse(argc, argv);
+    if (opt.pivot) return peer::pivot(opt.config, opt.reps, opt.csv);
     const Scene scene = top_sim::load_scene(opt.config + "/scenes/frictionless.yaml");
     if (opt.print_mjcf) {
       std::cout << peer::mjcf(scene, 1e-3);
