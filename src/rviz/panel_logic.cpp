@@ -207,7 +207,8 @@ std::string sent_message(const top_sim::TopCommand& c, const std::string& top) {
   if (c.set_friction) parts.push_back(friction_part(c));
   for (const ContactField& field : kContactFields) {
     const ContactMembers m = contact_members(field.name);
-    if (c.*m.set) parts.push_back(std::string(field.name) + " " + top_sim::format_number(c.*m.value) + " " + field.unit);
+    if (c.*m.set)
+      parts.push_back(std::string(field.name) + " " + top_sim::format_number(c.*m.value) + " " + field.unit);
   }
   return "Sent to top '" + top + "': " + listed(parts) + ".";
 }
