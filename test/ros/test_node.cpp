@@ -377,14 +377,15 @@ TEST_F(NodeTest, PatchRadiusFromCommandAndReconfigureShowsInTopState) {
   c.patch_radius = a;
   mon.command(c);
   const std::optional<top_sim::TopState> s = patch_shown(a);
-  ASSERT_TRUE(s) << "patch_radius " << a << " not in TopState";
+  ASSERT_TRUE(s.has_value()) << "patch_radius " << a << " not in TopState";
   EXPECT_NE(s->drilling_torque, 0.0);
-  if (s->contact_mode == top_sim::TopState::SLIPPING)  // sticking, the bound is the static coefficient's
+  if (s->contact_mode == top_sim::TopState::SLIPPING) {  // sticking, the bound is the static coefficient's
     EXPECT_LE(std::abs(s->drilling_torque), s->mu * s->normal_force * 3.0 * M_PI * a / 16.0 * (1.0 + 1e-9));
+  }
   c.patch_radius = 0.0;
   mon.command(c);
   const std::optional<top_sim::TopState> point = patch_shown(0.0);
-  ASSERT_TRUE(point) << "patch_radius 0 not in TopState";
+  ASSERT_TRUE(point.has_value()) << "patch_radius 0 not in TopState";
   EXPECT_EQ(point->drilling_torque, 0.0);
 
   for (const double radius : {2.0 * a, 0.0}) {
@@ -395,8 +396,10 @@ TEST_F(NodeTest, PatchRadiusFromCommandAndReconfigureShowsInTopState) {
     srv.request.config.doubles.push_back(p);
     ASSERT_TRUE(ros::service::call(kNode + "/set_parameters", srv));
     for (const auto& d : srv.response.config.doubles)
-      if (d.name == "patch_radius") EXPECT_EQ(d.value, radius) << "dynamic_reconfigure shows the value in force";
-    EXPECT_TRUE(patch_shown(radius)) << "dynamic_reconfigure patch_radius " << radius << " not in TopState";
+      if (d.name == "patch_radius") {
+        EXPECT_EQ(d.value, radius) << "dynamic_reconfigure shows the value in force";
+      }
+    EXPECT_TRUE(patch_shown(radius).has_value()) << "dynamic_reconfigure patch_radius " << radius << " not shown";
   }
 }
 
