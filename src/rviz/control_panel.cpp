@@ -161,10 +161,10 @@ QWidget* ControlWidget::build_contact_fields(QWidget* parent) {
     }
     auto* field = new QLineEdit(grid);
     field->setPlaceholderText("in force");
-    field->setToolTip(QString::fromStdString(std::string(f.name) + " [" + f.unit + "], >= 0"));
+    field->setToolTip(QString::fromStdString(std::string(f.name) + " " + f.symbol + " [" + f.unit + "], >= 0"));
     field->setMinimumWidth(50);
     contact_[f.name] = field;
-    row->addWidget(new QLabel(QString::fromStdString(std::string(f.name) + " [" + f.unit + "]"), grid));
+    row->addWidget(new QLabel(QString::fromStdString(std::string(f.symbol) + " [" + f.unit + "]"), grid));
     row->addWidget(field, 1);
     connect(field, &QLineEdit::returnPressed, this, &ControlWidget::apply);
   }

@@ -31,9 +31,12 @@ struct PanelFields {
 struct ContactField {
   const char* name;
   const char* unit;
+  const char* symbol;  // physics.md's: short enough for two fields side by side in the dock
 };
-constexpr ContactField kContactFields[] = {
-    {"patch_radius", "m"}, {"rolling_resistance", "m"}, {"spin_drag", "N m s"}, {"drag", "N s/m"}};
+constexpr ContactField kContactFields[] = {{"patch_radius", "m", "a"},
+                                           {"rolling_resistance", "m", "delta"},
+                                           {"spin_drag", "N m s", "k"},
+                                           {"drag", "N s/m", "c"}};
 
 // The fields as one TopCommand, checked with the core's rules (top_sim::validate of a Command and of a friction
 // law); "" or an error naming the field, the text and the allowed range. Law parameters left empty are not given:
