@@ -268,7 +268,8 @@ TEST(Markers, LabelShowsRegimeModePhiAndSpeed) {
   EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270, v 3.4 cm/s");
   s.patch_radius = 2.0e-4;  // a finite contact adds its patch and drilling torque; a point contact's text is unchanged
   s.drilling_torque = -1.25e-5;
-  EXPECT_EQ(top_sim_ros::status_text("b", s, "\n"), "b: sliding, slipping\nphi 0.270, v 3.4 cm/s\na 0.2 mm, M_n -1.25e-05 N m");
+  EXPECT_EQ(top_sim_ros::status_text("b", s, "\n"),
+            "b: sliding, slipping\nphi 0.270, v 3.4 cm/s\na 0.2 mm, M_n -1.25e-05 N m");
   s.patch_radius = 0.0;
   s.drilling_torque = 0.0;
   s.regime = top_sim::Regime::contact_fault;
