@@ -39,6 +39,9 @@ const std::vector<TrajectoryColumn>& trajectory_columns() {
       {"gap", "m", [](S s) { return s.gap; }, nullptr},
       {"energy", "J", [](S s) { return s.energy; }, nullptr},
       {"energy_residual", "J", [](S s) { return s.energy_balance_residual; }, nullptr},
+      // Appended last so that the columns before keep their positions in existing readers.
+      {"drilling_torque", "N m", [](S s) { return s.drilling_torque; }, nullptr},
+      {"patch_radius", "m", [](S s) { return s.patch_radius; }, nullptr},
   };
   return columns;
 }

@@ -50,6 +50,8 @@ void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state
   out.mu = s.mu;
   out.normal_force = s.normal_force;
   copy3(s.friction_force, out.friction_force);
+  out.drilling_torque = s.drilling_torque;
+  out.patch_radius = s.patch_radius;
   out.phi = s.phi;
   out.has_stationary_state = s.has_stationary_state;
   out.phi_star = s.phi_star;

@@ -75,6 +75,8 @@ void print(const top_sim::top_state_t& m, std::ostream& out) {
       << "\nhas_rotor: " << flag(m.has_rotor) << "\nrotor_spin: " << format_number(m.rotor_spin)
       << "\nslip: " << format_number(m.slip) << "\nmu: " << format_number(m.mu)
       << "\nnormal_force: " << format_number(m.normal_force) << "\nfriction_force: " << vec(m.friction_force, 3)
+      << "\ndrilling_torque: " << format_number(m.drilling_torque)
+      << "\npatch_radius: " << format_number(m.patch_radius)
       << "\nphi: " << format_number(m.phi) << "\nhas_stationary_state: " << flag(m.has_stationary_state)
       << "\nphi_star: " << format_number(m.phi_star) << "\nregime: " << int(m.regime)
       << "\nregime_name: \"" << m.regime_name << "\"\ncontact_mode: " << int(m.contact_mode)

@@ -315,7 +315,9 @@ JsonObject final_json(const Snapshot& f) {
       .add("spin", num(f.spin))
       .add("rotor_spin", f.has_rotor ? num(f.rotor_spin) : "null")
       .add("slip", num(f.slip))
-      .add("phi", num(f.phi));
+      .add("phi", num(f.phi))
+      .add("drilling_torque", num(f.drilling_torque))
+      .add("patch_radius", num(f.patch_radius));
   return o;
 }
 

@@ -7,9 +7,13 @@
 #include <pybind11/stl.h>
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
+#include <iterator>
 #include <memory>
 #include <mutex>
+#include <optional>
+#include <string>
 
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -84,6 +88,8 @@ py::dict snapshot_dict(const Snapshot& s) {
   d["mu"] = s.mu;
   d["normal_force"] = s.normal_force;
   d["friction_force"] = array(s.friction_force);
+  d["drilling_torque"] = s.drilling_torque;
+  d["patch_radius"] = s.patch_radius;
   d["com_acceleration"] = array(s.com_acceleration);
   d["phi"] = s.phi;
   d["has_stationary_state"] = s.has_stationary_state;
@@ -148,6 +154,24 @@ FrictionLaw friction_from(const py::handle& value, const FrictionLaw& in_force) 
   return changed_law(in_force, change);
 }
 
+// The number keys of top_sim.Command (command.hpp), named as its fields.
+struct NumberKey {
+  const char* name;
+  std::optional<double> Command::*member;
+};
+constexpr NumberKey kNumberKeys[] = {
+    {"inclination", &Command::inclination},         {"spin", &Command::spin},
+    {"rotor_spin", &Command::rotor_spin},           {"rotor_coupling", &Command::rotor_coupling},
+    {"static_friction", &Command::static_friction}, {"restitution", &Command::restitution},
+    {"patch_radius", &Command::patch_radius},       {"rolling_resistance", &Command::rolling_resistance},
+    {"spin_drag", &Command::spin_drag},             {"drag", &Command::drag}};
+
+std::string number_key_names() {
+  std::string names;
+  for (const NumberKey& k : kNumberKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
+  return names;
+}
+
 // The keys of top_sim.Command (command.hpp); the core validates the values.
 Command command_from(const py::dict& d, const FrictionLaw& in_force) {
   Command c;
@@ -158,15 +182,11 @@ Command command_from(const py::dict& d, const FrictionLaw& in_force) {
       continue;
     }
     const double v = number(item.second, key);
-    if (key == "inclination") c.inclination = v;
-    else if (key == "spin") c.spin = v;
-    else if (key == "rotor_spin") c.rotor_spin = v;
-    else if (key == "rotor_coupling") c.rotor_coupling = v;
-    else if (key == "static_friction") c.static_friction = v;
-    else if (key == "restitution") c.restitution = v;
-    else
-      throw py::key_error("unknown command key '" + key +
-                          "' (allowed: inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution, friction)");
+    const auto field = std::find_if(std::begin(kNumberKeys), std::end(kNumberKeys),
+                                    [&key](const NumberKey& k) { return key == k.name; });
+    if (field == std::end(kNumberKeys))
+      throw py::key_error("unknown command key '" + key + "' (allowed: " + number_key_names() + ", friction)");
+    c.*(field->member) = v;
   }
   return c;
 }
@@ -353,7 +373,7 @@ void bind_simulator(py::module_& m) {
            "CSV column (top_sim.COLUMNS); regime and contact_mode as codes into REGIMES and CONTACT_MODES.")
       .def("apply", &PySimulator::apply, py::arg("command"),
            "Queues a command dict (inclination, spin, rotor_spin, rotor_coupling, static_friction, restitution, "
-           "friction={'law': ..., parameters}); "
+           "patch_radius, rolling_resistance, spin_drag, drag, friction={'law': ..., parameters}); "
            "it takes effect at the next step boundary. Raises ValueError naming the field, value and range.")
       .def("snapshot", &PySimulator::snapshot, "Every derived quantity of the current instant, as a dict.")
       .def("reset", &PySimulator::reset, "Back to the scene's initial state; time keeps running forward.")

@@ -76,6 +76,8 @@ void carried_fields(Snap& s, Msg& m, Copy copy) {
   copy(s.mu, m.mu);
   copy(s.normal_force, m.normal_force);
   copy(s.friction_force, m.friction_force);
+  copy(s.drilling_torque, m.drilling_torque);
+  copy(s.patch_radius, m.patch_radius);
   copy(s.phi, m.phi);
   copy(s.has_stationary_state, m.has_stationary_state);
   copy(s.phi_star, m.phi_star);
@@ -220,13 +222,17 @@ top_sim::Command to_command(const top_sim::TopCommand& msg, const top_sim::Frict
   if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
   if (msg.set_static_friction) c.static_friction = msg.static_friction;  // validated by the core (>= mu(0))
   if (msg.set_restitution) c.restitution = msg.restitution;              // validated by the core ([0, 1])
+  if (msg.set_patch_radius) c.patch_radius = msg.patch_radius;           // these four: validated by the core (>= 0)
+  if (msg.set_rolling_resistance) c.rolling_resistance = msg.rolling_resistance;
+  if (msg.set_spin_drag) c.spin_drag = msg.spin_drag;
+  if (msg.set_drag) c.drag = msg.drag;
   if (msg.set_friction) {
     top_sim::FrictionChange change;
     error = friction_change(msg, change);
     if (!error.empty()) return c;
     c.friction = top_sim::changed_law(in_force, change);
   }
-  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_restitution all false)";
+  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_drag all false)";
   return c;
 }
 

@@ -163,9 +163,11 @@ void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, cons
 
   Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, readable(colour));
   const double above_top = (s.com - s.contact_point).z() + shape.stem_top + 0.02;
-  label.pose.position.z = std::max(above_top, control_layout::kTop + 1.5 * kLabelHeight);  // two lines, centred
-  label.scale.z = kLabelHeight;
   label.text = status_text(style.name, s, "\n");
+  const double lines = 1.0 + static_cast<double>(std::count(label.text.begin(), label.text.end(), '\n'));
+  // Centred text: half its height above the controls keeps its lowest line clear of them.
+  label.pose.position.z = std::max(above_top, control_layout::kTop + (0.5 * lines + 0.5) * kLabelHeight);
+  label.scale.z = kLabelHeight;
   out.markers.push_back(label);
 }
 
@@ -180,6 +182,14 @@ std::string speed_text(double v) {
   else if (v >= 0.01) std::snprintf(text, sizeof text, "%.1f cm/s", 100.0 * v);
   else std::snprintf(text, sizeof text, "%.2f mm/s", 1000.0 * v);
   return text;
+}
+
+// The patch and its drilling torque, only on a finite contact: a point contact's label stays as it was.
+std::string finite_contact_text(const top_sim::Snapshot& s, const std::string& line_break) {
+  if (!(s.patch_radius > 0.0) && s.drilling_torque == 0.0) return "";
+  char text[64];
+  std::snprintf(text, sizeof text, "a %.3g mm, M_n %.3g N m", 1000.0 * s.patch_radius, s.drilling_torque);
+  return line_break + text;
 }
 
 }  // namespace
@@ -258,8 +268,8 @@ std::string status_text(const std::string& name, const top_sim::Snapshot& s, con
     std::snprintf(numbers, sizeof numbers, "phi %.3f / phi* %.3f", s.phi, s.phi_star);
   else
     std::snprintf(numbers, sizeof numbers, "phi %.3f", s.phi);
-  return text + top_sim::to_string(s.regime) + ", " + top_sim::to_string(s.contact_mode) + line_break + numbers + ", v " +
-         speed_text(speed_on_plane(s));
+  text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
+  return text + numbers + ", v " + speed_text(speed_on_plane(s)) + finite_contact_text(s, line_break);
 }
 
 void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,

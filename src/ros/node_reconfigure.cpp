@@ -1,6 +1,7 @@
 #include "node_reconfigure.hpp"
 
 #include <cmath>
+#include <optional>
 
 #include "node_parameters.hpp"
 
@@ -31,6 +32,21 @@ top_sim::FrictionChange friction_from_config(const top_sim::TopSimConfig& cfg, t
   return change;
 }
 
+// The finite-contact and air fields (level 32): the config's, the Command's and the model's, named alike.
+struct FiniteField {
+  double top_sim::TopSimConfig::*config;
+  std::optional<double> top_sim::Command::*command;
+  double (*in_model)(const top_sim::Model&);
+};
+const FiniteField kFiniteFields[] = {
+    {&top_sim::TopSimConfig::patch_radius, &top_sim::Command::patch_radius,
+     [](const top_sim::Model& m) { return m.finite_contact.patch_radius; }},
+    {&top_sim::TopSimConfig::rolling_resistance, &top_sim::Command::rolling_resistance,
+     [](const top_sim::Model& m) { return m.finite_contact.rolling_resistance; }},
+    {&top_sim::TopSimConfig::spin_drag, &top_sim::Command::spin_drag,
+     [](const top_sim::Model& m) { return m.air.spin_drag; }},
+    {&top_sim::TopSimConfig::drag, &top_sim::Command::drag, [](const top_sim::Model& m) { return m.air.drag; }}};
+
 }  // namespace
 
 NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene,
@@ -43,6 +59,8 @@ NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, cons
   config_.real_time_factor = real_time_factor;
   config_.publish_rate = publish_rate;
   friction_to_config(start.friction ? *start.friction : scene.model.friction, config_);
+  for (const FiniteField& f : kFiniteFields)
+    config_.*f.config = start.*f.command ? *(start.*f.command) : f.in_model(scene.model);
   server_->updateConfig(config_);
   server_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
   // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.
@@ -57,13 +75,20 @@ void NodeReconfigure::show(const top_sim::Command& c) {
   if (c.inclination) config_.alpha = *c.inclination;
   if (c.spin) config_.spin = *c.spin;
   if (c.friction) friction_to_config(*c.friction, config_);
-  if (c.inclination || c.spin || c.friction) dirty_ = true;  // pushed by the slow timer
+  bool finite = false;
+  for (const FiniteField& f : kFiniteFields)
+    if (c.*f.command) {
+      config_.*f.config = *(c.*f.command);
+      finite = true;
+    }
+  if (c.inclination || c.spin || c.friction || finite) dirty_ = true;  // pushed by the slow timer
 }
 
 void NodeReconfigure::show_scene(const top_sim::Scene& scene) {
   config_.alpha = scene.model.plane.inclination;
   config_.spin = scene.initial.spin;
   friction_to_config(scene.model.friction, config_);
+  for (const FiniteField& f : kFiniteFields) config_.*f.config = f.in_model(scene.model);
   dirty_ = true;
 }
 
@@ -84,6 +109,9 @@ void NodeReconfigure::on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level)
     }
     c.friction = law;
   }
+  if (level & 32)
+    for (const FiniteField& f : kFiniteFields)
+      if (cfg.*f.config != config_.*f.config) c.*f.command = cfg.*f.config;  // the core validates (>= 0)
   if (!c.empty() && !hooks_.submit(c).empty()) {
     const double rtf = cfg.real_time_factor, rate = cfg.publish_rate;
     cfg = config_;  // show the values in force
@@ -93,6 +121,7 @@ void NodeReconfigure::on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level)
   reconfigure_pacing(cfg, level);
   cfg.alpha = config_.alpha;  // applied or refused above; either way config_ holds the value in force
   cfg.spin = config_.spin;
+  for (const FiniteField& f : kFiniteFields) cfg.*f.config = config_.*f.config;
 }
 
 // The law dynamic_reconfigure asks for, over the law in force; false (after a warning) when it names no law or

@@ -1,6 +1,8 @@
 #include "param_yaml.hpp"
 
+#include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "top_sim/friction.hpp"
 
@@ -29,7 +31,8 @@ YAML::Node to_yaml(XmlRpc::XmlRpcValue& v, const std::string& where) {
 
 const std::set<std::string>& reconfigure_physics_keys() {
   static const std::set<std::string> keys = [] {
-    std::set<std::string> k = {"alpha", "spin", "friction_law"};
+    std::set<std::string> k = {"alpha",        "spin",      "friction_law", "patch_radius",
+                               "rolling_resistance", "spin_drag", "drag"};
     for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) k.insert(p.name);
     return k;
   }();
@@ -41,6 +44,22 @@ double number(XmlRpc::XmlRpcValue& v, const std::string& where) {
   if (v.getType() == XmlRpc::XmlRpcValue::TypeDouble) return static_cast<double>(v);
   if (v.getType() == XmlRpc::XmlRpcValue::TypeInt) return static_cast<int>(v);
   throw std::runtime_error(where + " = " + v.toXml() + ": must be a number");
+}
+
+// The finite-contact and air values found at start, each only where it differs from the scene's: a value left on
+// the parameter server by an earlier run that equals the scene's does not replace a scene's hertz patch.
+void finite_start(XmlRpc::XmlRpcValue& tree, const top_sim::Model& model, const std::string& where,
+                  top_sim::Command& c) {
+  const std::tuple<const char*, std::optional<double> top_sim::Command::*, double> fields[] = {
+      {"patch_radius", &top_sim::Command::patch_radius, model.finite_contact.patch_radius},
+      {"rolling_resistance", &top_sim::Command::rolling_resistance, model.finite_contact.rolling_resistance},
+      {"spin_drag", &top_sim::Command::spin_drag, model.air.spin_drag},
+      {"drag", &top_sim::Command::drag, model.air.drag}};
+  for (const auto& [name, member, in_scene] : fields) {
+    if (!tree.hasMember(name)) continue;
+    const double v = number(tree[name], where + "/" + name);
+    if (v != in_scene) c.*member = v;
+  }
 }
 }  // namespace
 
@@ -65,6 +84,7 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
     friction = true;
   }
   if (friction) c.friction = law;
+  finite_start(tree, model, where, c);
   return c;
 }
 

@@ -14,7 +14,8 @@ namespace top_sim_ros {
 // Converts a value; throws std::runtime_error naming `where` for types YAML cannot hold (dates, binary).
 YAML::Node to_yaml(XmlRpc::XmlRpcValue& value, const std::string& where);
 
-// The keys of cfg/TopSim.cfg that change the physics (alpha, spin, friction_law and the friction parameters).
+// The keys of cfg/TopSim.cfg that change the physics (alpha, spin, friction_law, the friction parameters, the
+// finite contact and air).
 const std::set<std::string>& reconfigure_physics_keys();
 
 // Values of those keys found in `tree` at start (set by the user, or left by dynamic_reconfigure) as one command

@@ -113,6 +113,7 @@ QWidget* ControlWidget::build_change() {
   for (const std::string& law : law_names()) law_->addItem(QString::fromStdString(law));
   form->addRow("friction law", law_);
   form->addRow(build_friction_parameters(box));
+  form->addRow(build_contact_fields(box));
   QPushButton* apply_button = button("Apply to the picked top", box);
   form->addRow(apply_button);
   connect(law_, QOverload<int>::of(&QComboBox::currentIndexChanged), this, &ControlWidget::show_law);
@@ -144,6 +145,30 @@ QWidget* ControlWidget::build_friction_parameters(QWidget* parent) {
     law_pages_->addWidget(page);
   }
   return law_pages_;
+}
+
+// Patch radius, rolling resistance and air, two to a row (the dock is narrow); empty: the value in force is kept.
+// TopState does not carry them, so they show what was typed, not the top's values.
+QWidget* ControlWidget::build_contact_fields(QWidget* parent) {
+  auto* grid = new QWidget(parent);
+  auto* rows = new QVBoxLayout(grid);
+  rows->setContentsMargins(0, 0, 0, 0);
+  QHBoxLayout* row = nullptr;
+  for (const ContactField& f : kContactFields) {
+    if (row == nullptr || row->count() == 4) {
+      row = new QHBoxLayout();
+      rows->addLayout(row);
+    }
+    auto* field = new QLineEdit(grid);
+    field->setPlaceholderText("in force");
+    field->setToolTip(QString::fromStdString(std::string(f.name) + " " + f.symbol + " [" + f.unit + "], >= 0"));
+    field->setMinimumWidth(50);
+    contact_[f.name] = field;
+    row->addWidget(new QLabel(QString::fromStdString(std::string(f.symbol) + " [" + f.unit + "]"), grid));
+    row->addWidget(field, 1);
+    connect(field, &QLineEdit::returnPressed, this, &ControlWidget::apply);
+  }
+  return grid;
 }
 
 QWidget* ControlWidget::build_run() {
@@ -204,6 +229,11 @@ QLineEdit* ControlWidget::parameter_field(const std::string& name) const {
   return it == parameters_.end() ? nullptr : it->second;
 }
 
+QLineEdit* ControlWidget::contact_field(const std::string& name) const {
+  auto it = contact_.find(name);
+  return it == contact_.end() ? nullptr : it->second;
+}
+
 void ControlWidget::show_message(const std::string& text) {
   message_ = text;
   message_label_->setText(QString::fromStdString(text));
@@ -218,6 +248,7 @@ void ControlWidget::apply() {
   if (spin_follow_.edited()) f.spin = text_of(spin_);
   f.friction_law = law_->currentText().toStdString();
   for (const std::string& p : law_parameters(f.friction_law)) f.friction[p] = text_of(parameters_[p]);
+  for (const auto& [name, field] : contact_) f.contact[name] = text_of(field);
   top_sim::TopCommand c;
   const std::string error = to_command(f, c);
   if (!error.empty()) return show_message(refused_message(error));  // nothing is sent

@@ -37,12 +37,13 @@ class ControlWidget : public QWidget {
   QLineEdit* spin_field() const { return spin_; }
   QComboBox* law_field() const { return law_; }
   QLineEdit* parameter_field(const std::string& name) const;
+  QLineEdit* contact_field(const std::string& name) const;  // kContactFields' names
   QLineEdit* real_time_factor_field() const { return rtf_; }
   QLineEdit* spawn_name_field() const { return spawn_name_; }
   QLineEdit* spawn_file_field() const { return spawn_file_; }
 
  public Q_SLOTS:
-  void apply();          // inclination, spin, friction law -> the picked top's ~command
+  void apply();          // inclination, spin, friction law, contact and air -> the picked top's ~command
   void toggle_pause();   // ~pause
   void reset();          // ~reset
   void set_real_time_factor();  // dynamic_reconfigure's real_time_factor
@@ -60,6 +61,7 @@ class ControlWidget : public QWidget {
   QWidget* build_top();
   QWidget* build_change();
   QWidget* build_friction_parameters(QWidget* parent);
+  QWidget* build_contact_fields(QWidget* parent);
   QWidget* build_run();
   QWidget* build_spawn();
 
@@ -76,6 +78,7 @@ class ControlWidget : public QWidget {
   QComboBox* law_ = nullptr;
   QStackedWidget* law_pages_ = nullptr;  // the picked law's parameters only: one row, not one row per parameter
   std::map<std::string, QLineEdit*> parameters_;
+  std::map<std::string, QLineEdit*> contact_;  // patch, rolling resistance, air: sent when not empty
   FollowedField inclination_follow_, spin_follow_{1}, rtf_follow_;
   QPushButton* pause_ = nullptr;
   QLabel *status_ = nullptr, *message_label_ = nullptr;

@@ -80,6 +80,33 @@ std::string number_field(const char* name, const std::string& text, std::uint8_t
   return "";
 }
 
+// A contact field's flag and value in TopCommand and its member in the core's Command, by kContactFields' name.
+struct ContactMembers {
+  std::uint8_t top_sim::TopCommand::*set;
+  double top_sim::TopCommand::*value;
+  std::optional<double> top_sim::Command::*check;
+};
+ContactMembers contact_members(const std::string& name) {
+  using M = top_sim::TopCommand;
+  using C = top_sim::Command;
+  if (name == "patch_radius") return {&M::set_patch_radius, &M::patch_radius, &C::patch_radius};
+  if (name == "rolling_resistance") return {&M::set_rolling_resistance, &M::rolling_resistance, &C::rolling_resistance};
+  if (name == "spin_drag") return {&M::set_spin_drag, &M::spin_drag, &C::spin_drag};
+  return {&M::set_drag, &M::drag, &C::drag};
+}
+
+// The contact fields typed in, parsed into `out` and `check`; "" or the first parse error.
+std::string contact_command(const PanelFields& f, top_sim::TopCommand& out, top_sim::Command& check) {
+  for (const ContactField& field : kContactFields) {
+    const auto text = f.contact.find(field.name);
+    if (text == f.contact.end()) continue;
+    const ContactMembers m = contact_members(field.name);
+    const std::string error = number_field(field.name, text->second, out.*m.set, out.*m.value, check.*m.check);
+    if (!error.empty()) return error;
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
@@ -88,11 +115,12 @@ std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
   std::string error = number_field("inclination", f.inclination, out.set_inclination, out.inclination,
                                    check.inclination);
   if (error.empty()) error = number_field("spin", f.spin, out.set_spin, out.spin, check.spin);
+  if (error.empty()) error = contact_command(f, out, check);
   if (!error.empty()) return error;
-  error = top_sim::validate(check, top_sim::Model());
+  error = top_sim::validate(check, top_sim::Model());  // a full model's rules: the node checks its own again
   if (!error.empty()) return error;
   if (!blank(f.friction_law)) return friction_command(f, out);
-  if (!out.set_inclination && !out.set_spin) return "no value was typed in and no friction law picked";
+  if (check.empty()) return "no value was typed in and no friction law picked";
   return "";
 }
 
@@ -177,6 +205,11 @@ std::string sent_message(const top_sim::TopCommand& c, const std::string& top) {
   if (c.set_inclination) parts.push_back("inclination " + top_sim::format_number(c.inclination) + " rad");
   if (c.set_spin) parts.push_back("spin " + top_sim::format_number(c.spin) + " rad/s");
   if (c.set_friction) parts.push_back(friction_part(c));
+  for (const ContactField& field : kContactFields) {
+    const ContactMembers m = contact_members(field.name);
+    if (c.*m.set)
+      parts.push_back(std::string(field.name) + " " + top_sim::format_number(c.*m.value) + " " + field.unit);
+  }
   return "Sent to top '" + top + "': " + listed(parts) + ".";
 }
 

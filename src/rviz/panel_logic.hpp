@@ -24,7 +24,19 @@ struct PanelFields {
   std::string inclination, spin;               // [rad], [rad/s]
   std::string friction_law;                    // "" = keep the law; else one of law_names()
   std::map<std::string, std::string> friction;  // parameter name -> text; empty texts keep the law in force's
+  std::map<std::string, std::string> contact;   // kContactFields' name -> text; an empty text is not sent
 };
+
+// The finite contact's and air's fields (TopCommand's names, physics.md section 12), each >= 0.
+struct ContactField {
+  const char* name;
+  const char* unit;
+  const char* symbol;  // physics.md's: short enough for two fields side by side in the dock
+};
+constexpr ContactField kContactFields[] = {{"patch_radius", "m", "a"},
+                                           {"rolling_resistance", "m", "delta"},
+                                           {"spin_drag", "N m s", "k"},
+                                           {"drag", "N s/m", "c"}};
 
 // The fields as one TopCommand, checked with the core's rules (top_sim::validate of a Command and of a friction
 // law); "" or an error naming the field, the text and the allowed range. Law parameters left empty are not given:

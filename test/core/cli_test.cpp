@@ -82,8 +82,10 @@ TEST(Cli, DefaultSceneSummaryHasTheDocumentedKeysAndSleepsAtPhiStar) {
   ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
   for (const char* key : {"sim_seconds", "cpu_seconds", "steps", "rhs_evaluations", "regime", "phi_measured", "phi_star",
                           "final", "final.position", "final.velocity", "final.f_hat", "final.omega", "final.rotor_spin",
-                          "energy_balance_residual", "contact_fault"})
+                          "final.drilling_torque", "final.patch_radius", "energy_balance_residual", "contact_fault"})
     EXPECT_TRUE(j.get_child_optional(key)) << "missing key " << key;
+  EXPECT_EQ(j.get<double>("final.drilling_torque"), 0.0);  // the default scene's point contact
+  EXPECT_EQ(j.get<double>("final.patch_radius"), 0.0);
   // Boost's JSON reader keeps null as the text "null".
   EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
   EXPECT_EQ(j.get<std::string>("final.rotor_spin"), "null");  // no rotor on this top
@@ -141,6 +143,10 @@ TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
                           "f_y", "f_z", "omega_x", "omega_y", "omega_z", "s", "mu", "N", "phi", "regime", "energy",
                           "energy_residual"})
     EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << "missing column " << col << ": " << line;
+  // The finite contact's columns come last: the columns before keep their positions.
+  ASSERT_GE(header.size(), 2u);
+  EXPECT_EQ(header[header.size() - 2], "drilling_torque") << line;
+  EXPECT_EQ(header.back(), "patch_radius") << line;
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line))
     if (!line.empty()) rows.push_back(split(line));
@@ -156,6 +162,45 @@ TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
                 regime == "contact_fault")
         << regime;
   }
+}
+
+// physics.md section 12: an upright top pivoting on a patch of radius a with Coulomb mu on a level plane has
+// n . M_n = -mu m g (3 pi a / 16) (Hertzian pressure); the CSV and the summary's final block carry it and a.
+TEST(Cli, FiniteContactColumnsCarryTheDrillingTorqueAndPatch) {
+  const double mass = 0.025, g = 9.81, mu = 0.3, a = 2.0e-4;
+  const std::string scene = in_scratch("pivoting.yaml"), csv = in_scratch("pivoting.csv"),
+                    summary = in_scratch("pivoting.json");
+  std::ofstream(scene) << "top: {mass: " << top_sim_test::num(mass)
+                       << ", tip_radius: 1.5e-3, com_offset: 0.01, inertia_axial: 5.0e-6, inertia_transverse: 3.0e-6}\n"
+                       << "plane: {inclination: 0.0, gravity: " << top_sim_test::num(g) << "}\n"
+                       << "friction: {law: coulomb, mu: " << top_sim_test::num(mu) << "}\n"
+                       << "contact: {patch_radius: " << top_sim_test::num(a) << "}\n"
+                       << "initial: {start: tilted, tilt: 0.0, spin: 100.0}\n";
+  const CliResult r =
+      run_cli("'" + scene + "' --duration 0.2 --rate 10 --csv '" + csv + "' --summary '" + summary + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double expected = -mu * mass * g * 3.0 * M_PI * a / 16.0;
+  std::ifstream in(csv);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  const std::vector<std::string> header = split(line);
+  const auto torque_col = std::find(header.begin(), header.end(), "drilling_torque") - header.begin();
+  const auto patch_col = std::find(header.begin(), header.end(), "patch_radius") - header.begin();
+  ASSERT_LT(patch_col, static_cast<long>(header.size())) << line;
+  int rows = 0;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> row = split(line);
+    ASSERT_EQ(row.size(), header.size());
+    EXPECT_NEAR(std::stod(row[torque_col]), expected, 1e-6 * std::abs(expected)) << "row " << rows;
+    EXPECT_EQ(std::stod(row[patch_col]), a) << "row " << rows;
+    ++rows;
+  }
+  EXPECT_EQ(rows, 3);
+  pt::ptree j;
+  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
+  EXPECT_NEAR(j.get<double>("final.drilling_torque"), expected, 1e-6 * std::abs(expected));
+  EXPECT_EQ(j.get<double>("final.patch_radius"), a);
 }
 
 }  // namespace

@@ -211,3 +211,58 @@ def test_gil_is_released_and_one_thread_owns_a_simulator():
     worker.join()
     assert refused, "the main thread never ran while run() was simulating: the GIL was held"
     assert sim.time == pytest.approx(3000.0)
+
+
+def pivoting_dict(patch_radius):
+    """An upright top on a level plane with Coulomb friction and a fixed patch (physics.md section 12)."""
+    return {
+        "top": {"mass": 0.025, "tip_radius": 1.5e-3, "com_offset": 0.01, "inertia_axial": 5.0e-6,
+                "inertia_transverse": 3.0e-6},
+        "plane": {"inclination": 0.0, "gravity": 9.81},
+        "friction": {"law": "coulomb", "mu": 0.3},
+        "contact": {"patch_radius": patch_radius},
+        "initial": {"start": "tilted", "tilt": 0.0, "spin": 100.0},
+    }
+
+
+def pivoting_torque(scene, a):
+    """n . M_n = -mu m g (3 pi a / 16): Coulomb drilling under a Hertzian pressure, spin positive."""
+    return -scene["friction"]["mu"] * scene["top"]["mass"] * scene["plane"]["gravity"] * 3.0 * math.pi * a / 16.0
+
+
+def test_finite_contact_quantities_in_snapshot_and_trajectory():
+    a = 2.0e-4
+    scene = pivoting_dict(a)
+    sim = top_sim.Simulator(scene)
+    snap = sim.run(0.1)
+    expected = pivoting_torque(scene, a)
+    assert snap["patch_radius"] == a
+    assert snap["drilling_torque"] == pytest.approx(expected, rel=1e-6)
+    traj = sim.trajectory(0.1, 20.0)
+    np.testing.assert_array_equal(traj["patch_radius"], np.full(len(traj["t"]), a))
+    np.testing.assert_allclose(traj["drilling_torque"], expected, rtol=1e-6)
+    point = top_sim.Simulator("default").run(0.1)  # a point contact: both zero
+    assert point["drilling_torque"] == 0.0 and point["patch_radius"] == 0.0
+
+
+def test_finite_contact_commands_apply_and_bad_ones_are_refused():
+    a = 2.0e-4
+    scene = pivoting_dict(a)
+    sim = top_sim.Simulator(scene)
+    sim.run(0.05)
+    before = sim.snapshot()
+    with pytest.raises(ValueError, match="patch_radius"):
+        sim.apply({"patch_radius": -1.0})
+    for key in ("rolling_resistance", "spin_drag", "drag"):
+        with pytest.raises(ValueError, match=key):
+            sim.apply({key: float("nan")})
+    after = sim.snapshot()
+    assert after["t"] == before["t"] and after["patch_radius"] == a  # refused input changes nothing
+    sim.apply({"patch_radius": 2.0 * a})
+    snap = sim.run(0.01)
+    assert snap["patch_radius"] == 2.0 * a
+    assert snap["drilling_torque"] == pytest.approx(pivoting_torque(scene, 2.0 * a), rel=1e-6)
+    sim.apply({"rolling_resistance": 1.0e-5, "spin_drag": 1.0e-9, "drag": 1.0e-6, "patch_radius": 0.0})
+    snap = sim.run(0.01)
+    assert snap["fault"] is None
+    assert snap["patch_radius"] == 0.0 and snap["drilling_torque"] == 0.0  # back to a point contact

@@ -266,6 +266,12 @@ TEST(Markers, LabelShowsRegimeModePhiAndSpeed) {
   EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270, v 50.0 m/s");
   s.com_velocity = Eigen::Vector3d(0.0, 0.034, 0.0);
   EXPECT_EQ(top_sim_ros::status_text("b", s), "b: sliding, slipping, phi 0.270, v 3.4 cm/s");
+  s.patch_radius = 2.0e-4;  // a finite contact adds its patch and drilling torque; a point contact's text is unchanged
+  s.drilling_torque = -1.25e-5;
+  EXPECT_EQ(top_sim_ros::status_text("b", s, "\n"),
+            "b: sliding, slipping\nphi 0.270, v 3.4 cm/s\na 0.2 mm, M_n -1.25e-05 N m");
+  s.patch_radius = 0.0;
+  s.drilling_torque = 0.0;
   s.regime = top_sim::Regime::contact_fault;
   s.fault_message = "penetration 2 mm";
   EXPECT_EQ(top_sim_ros::status_text("b", s), "b: fault: penetration 2 mm");
@@ -597,6 +603,36 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   EXPECT_FALSE(c.inclination);
 }
 
+// The finite contact's and air's fields travel with their set_ flags; a negative value is the core's to refuse.
+TEST(TopCommand, FiniteContactAndAirAreCarriedUnvalidated) {
+  top_sim::TopCommand m;
+  m.patch_radius = 1.0e-4;  // not set: ignored
+  m.set_rolling_resistance = true;
+  m.rolling_resistance = 2.0e-5;
+  m.set_spin_drag = true;
+  m.spin_drag = 3.0e-9;
+  m.set_drag = true;
+  m.drag = 4.0e-6;
+  std::string error;
+  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
+  EXPECT_EQ(error, "");
+  EXPECT_FALSE(c.patch_radius);
+  ASSERT_TRUE(c.rolling_resistance && c.spin_drag && c.drag);
+  EXPECT_EQ(*c.rolling_resistance, 2.0e-5);
+  EXPECT_EQ(*c.spin_drag, 3.0e-9);
+  EXPECT_EQ(*c.drag, 4.0e-6);
+
+  top_sim::TopCommand only_patch;
+  only_patch.set_patch_radius = true;
+  only_patch.patch_radius = -1.0;
+  c = to_command(only_patch, top_sim::FrictionLaw(), error);
+  EXPECT_EQ(error, "");
+  ASSERT_TRUE(c.patch_radius);
+  EXPECT_EQ(*c.patch_radius, -1.0);
+  EXPECT_NE(top_sim::validate(c, top_sim::Model()).find("patch_radius = -1"), std::string::npos)
+      << top_sim::validate(c, top_sim::Model());
+}
+
 // A snapshot whose every field TopState carries has its own value (no two alike), so a swapped field shows.
 top_sim::Snapshot distinct_snapshot() {
   top_sim::Snapshot s;
@@ -610,6 +646,7 @@ top_sim::Snapshot distinct_snapshot() {
   s.angular_velocity = vec();
   s.spin = next(); s.has_rotor = true; s.rotor_spin = next(); s.slip = next(); s.mu = next();
   s.normal_force = next(); s.friction_force = vec(); s.phi = next();
+  s.drilling_torque = next(); s.patch_radius = next();
   s.has_stationary_state = true; s.phi_star = next();
   s.regime = top_sim::Regime::precessing; s.contact_mode = top_sim::ContactMode::flight;
   s.gap = next(); s.energy = next(); s.dissipated_work = next(); s.energy_balance_residual = next();
@@ -634,6 +671,8 @@ TEST(TopStateMsg, SnapshotRoundTripIsExact) {
   EXPECT_EQ(b.friction_force, a.friction_force);
   EXPECT_EQ(b.has_rotor, a.has_rotor);
   EXPECT_EQ(b.normal_force, a.normal_force);
+  EXPECT_EQ(b.drilling_torque, a.drilling_torque);
+  EXPECT_EQ(b.patch_radius, a.patch_radius);
   EXPECT_EQ(b.has_stationary_state, a.has_stationary_state);
   EXPECT_EQ(b.phi_star, a.phi_star);
   EXPECT_EQ(b.dissipated_work, a.dissipated_work);

@@ -10,6 +10,7 @@
 #include <functional>
 #include <limits>
 #include <mutex>
+#include <optional>
 #include <vector>
 
 #include <dynamic_reconfigure/Reconfigure.h>
@@ -299,6 +300,8 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
        {"restitution = 1.5", "[0, 1]"}},
       {cmd([](top_sim::TopCommand& c) { c.set_static_friction = true; c.static_friction = -0.1; }),
        {"static_friction = -0.1", ">= mu(0)"}},
+      {cmd([](top_sim::TopCommand& c) { c.set_patch_radius = true; c.patch_radius = -1.0; }),
+       {"patch_radius = -1", ">= 0"}},
       // One bad field rejects the whole command: the valid inclination must not be applied either.
       {cmd([nan](top_sim::TopCommand& c) { c.set_inclination = true; c.inclination = 0.05; c.set_spin = true; c.spin = nan; }),
        {"spin = ", "nan"}},
@@ -319,6 +322,7 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
   EXPECT_EQ(s.alpha, before.msg.alpha);
   EXPECT_NEAR(s.spin, before.msg.spin, 0.5 + 2.0 * (s.sim_time - before.msg.sim_time));  // |d spin/dt| < 2 rad/s^2
   EXPECT_NEAR(s.mu, paper_mu(0.25, 0.6, s.slip), 1e-12) << "pmma law (scene) still in force";
+  EXPECT_EQ(s.patch_radius, before.msg.patch_radius) << "the scene's point contact still in force";
   EXPECT_NE(s.regime, top_sim::TopState::CONTACT_FAULT);
 }
 
@@ -334,7 +338,8 @@ TEST_F(NodeTest, DynamicReconfigureRefusesOutOfRangeValuesInsteadOfClamping) {
   const std::vector<Case> cases = {{"real_time_factor", -1.0, 1.0, {"real_time_factor = -1", ">= 0"}},
                                    {"publish_rate", 0.0, g_rate, {"publish_rate = 0", "(0, 10000]"}},
                                    {"spin", 2e6, std::nan(""), {"spin = 2e+06", "|spin| <= 1e+06"}},
-                                   {"alpha", 2.0, std::nan(""), {"inclination = 2", "|alpha| < pi/2"}}};
+                                   {"alpha", 2.0, std::nan(""), {"inclination = 2", "|alpha| < pi/2"}},
+                                   {"patch_radius", -1.0, 0.0, {"patch_radius = -1", ">= 0"}}};
   const Received before = mon.latest();
   for (const Case& k : cases) {
     dynamic_reconfigure::Reconfigure srv;
@@ -355,6 +360,47 @@ TEST_F(NodeTest, DynamicReconfigureRefusesOutOfRangeValuesInsteadOfClamping) {
   EXPECT_EQ(s.alpha, before.msg.alpha);
   EXPECT_EQ(s.requested_real_time_factor, 1.0);
   EXPECT_NEAR(s.spin, before.msg.spin, 0.5 + 2.0 * (s.sim_time - before.msg.sim_time));
+  EXPECT_EQ(s.patch_radius, 0.0);
+}
+
+// A patch set by TopCommand, then by dynamic_reconfigure, shows in TopState with a drilling torque within the
+// Coulomb bound |n . M_n| <= mu N (3 pi a / 16) (physics.md section 12); patch_radius 0 is the point contact again.
+TEST_F(NodeTest, PatchRadiusFromCommandAndReconfigureShowsInTopState) {
+  const double a = 2.0e-4;
+  auto patch_shown = [this](double radius) {
+    const std::size_t n = mon.count();
+    const int i = mon.wait_state([radius](const top_sim::TopState& s) { return s.patch_radius == radius; }, n, 2.0);
+    return i < 0 ? std::optional<top_sim::TopState>() : std::optional<top_sim::TopState>(mon.state(i).msg);
+  };
+  top_sim::TopCommand c;
+  c.set_patch_radius = true;
+  c.patch_radius = a;
+  mon.command(c);
+  const std::optional<top_sim::TopState> s = patch_shown(a);
+  ASSERT_TRUE(s.has_value()) << "patch_radius " << a << " not in TopState";
+  EXPECT_NE(s->drilling_torque, 0.0);
+  if (s->contact_mode == top_sim::TopState::SLIPPING) {  // sticking, the bound is the static coefficient's
+    EXPECT_LE(std::abs(s->drilling_torque), s->mu * s->normal_force * 3.0 * M_PI * a / 16.0 * (1.0 + 1e-9));
+  }
+  c.patch_radius = 0.0;
+  mon.command(c);
+  const std::optional<top_sim::TopState> point = patch_shown(0.0);
+  ASSERT_TRUE(point.has_value()) << "patch_radius 0 not in TopState";
+  EXPECT_EQ(point->drilling_torque, 0.0);
+
+  for (const double radius : {2.0 * a, 0.0}) {
+    dynamic_reconfigure::Reconfigure srv;
+    dynamic_reconfigure::DoubleParameter p;
+    p.name = "patch_radius";
+    p.value = radius;
+    srv.request.config.doubles.push_back(p);
+    ASSERT_TRUE(ros::service::call(kNode + "/set_parameters", srv));
+    for (const auto& d : srv.response.config.doubles)
+      if (d.name == "patch_radius") {
+        EXPECT_EQ(d.value, radius) << "dynamic_reconfigure shows the value in force";
+      }
+    EXPECT_TRUE(patch_shown(radius).has_value()) << "dynamic_reconfigure patch_radius " << radius << " not shown";
+  }
 }
 
 TEST_F(NodeTest, ResetReturnsToInitialStateWithMonotonicTime) {

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "panel_logic.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/friction.hpp"
 
 using top_sim_rviz::PanelFields;
@@ -34,6 +35,29 @@ TEST(PanelLogic, MotionFieldsBecomeACommandAndBadTextNamesFieldAndRange) {
             std::string::npos);
   EXPECT_EQ(top_sim_rviz::refused_message(top_sim_rviz::to_command(PanelFields(), c)),
             "Nothing was sent: no value was typed in and no friction law picked.");
+}
+
+// Patch, rolling resistance and air: only the filled-in fields are sent, each checked by the core (>= 0).
+TEST(PanelLogic, ContactFieldsGiveOnlyWhatIsFilledInAndTheCoreChecksThem) {
+  PanelFields f;
+  f.contact["patch_radius"] = "2e-4";
+  f.contact["spin_drag"] = "";  // empty: not sent
+  top_sim::TopCommand c;
+  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_TRUE(c.set_patch_radius);
+  EXPECT_EQ(c.patch_radius, 2e-4);
+  EXPECT_FALSE(c.set_spin_drag || c.set_rolling_resistance || c.set_drag || c.set_inclination || c.set_friction);
+  const std::string a = top_sim::format_number(2e-4);  // numbers as every message prints them
+  EXPECT_EQ(top_sim_rviz::sent_message(c, "top"), "Sent to top 'top': patch_radius " + a + " m.");
+  f.contact["drag"] = "1e-6";
+  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_EQ(top_sim_rviz::sent_message(c, "top"),
+            "Sent to top 'top': patch_radius " + a + " m and drag " + top_sim::format_number(1e-6) + " N s/m.");
+  f.contact["patch_radius"] = "-1";
+  EXPECT_NE(top_sim_rviz::to_command(f, c).find("patch_radius = -1: must be >= 0"), std::string::npos)
+      << top_sim_rviz::to_command(f, c);
+  f.contact["patch_radius"] = "wide";
+  EXPECT_EQ(top_sim_rviz::to_command(f, c), "patch_radius = 'wide': must be a number");
 }
 
 TEST(PanelLogic, FrictionFieldsGiveOnlyWhatIsFilledIn) {

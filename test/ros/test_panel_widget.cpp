@@ -127,6 +127,16 @@ TEST(PanelWidget, ButtonsReachTheNodeAndFieldsFollowTheTop) {
       << "mu " << g_state.mu << "; panel: " << w.message();
   EXPECT_EQ(w.message(), "Sent to top 'top': friction law coulomb with mu 0.35.");
 
+  w.law_field()->setCurrentText("");  // keep the law: only the patch is sent
+  const double a = 2e-4;
+  for (const double radius : {a, 0.0}) {  // a patch, then the point contact again
+    w.contact_field("patch_radius")->setText(QString::number(radius));
+    click(w, "Apply to the picked top");
+    EXPECT_TRUE(wait_for([radius] { return g_state.patch_radius == radius; }))
+        << "patch_radius " << g_state.patch_radius << "; panel: " << w.message();
+  }
+  w.contact_field("patch_radius")->clear();
+
   click(w, "Pause");
   EXPECT_TRUE(wait_for([] { return g_state.paused; })) << w.message();
   EXPECT_EQ(w.message(), "Paused.");
