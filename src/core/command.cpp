@@ -18,6 +18,21 @@ std::string bad(const char* field, double value, const char* range) { return ran
 
 namespace {
 
+// physics.md section 12's run-time fields: each >= 0, and none > 0 under the reduced model.
+std::string validate_finite_contact(const Command& c, const Model& model) {
+  const std::pair<const char*, const std::optional<double>*> finite_fields[] = {
+      {"patch_radius", &c.patch_radius}, {"rolling_resistance", &c.rolling_resistance},
+      {"spin_drag", &c.spin_drag}, {"drag", &c.drag}};
+  for (const auto& [name, value] : finite_fields) {
+    if (!*value) continue;
+    const double v = **value;
+    if (!std::isfinite(v) || v < 0.0) return bad(name, v, ">= 0 and finite");
+    if (v > 0.0 && (model.kind == ModelKind::adiabatic || model.automatic.enabled))
+      return bad(name, v, "0 with model.kind adiabatic or auto (the reduced model has no finite contact or air)");
+  }
+  return "";
+}
+
 std::string validate_in_kind(const Command& c, const Model& model) {
   if (c.inclination) {
     const double a = *c.inclination;
@@ -44,16 +59,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
     if (e > 0.0 && !has_contact_modes(model))
       return bad("restitution", e, "0 with model.normal_force static or model.kind adiabatic (permanent contact)");
   }
-  const std::pair<const char*, const std::optional<double>*> finite_fields[] = {
-      {"patch_radius", &c.patch_radius}, {"rolling_resistance", &c.rolling_resistance},
-      {"spin_drag", &c.spin_drag}, {"drag", &c.drag}};
-  for (const auto& [name, value] : finite_fields) {
-    if (!*value) continue;
-    const double v = **value;
-    if (!std::isfinite(v) || v < 0.0) return bad(name, v, ">= 0 and finite");
-    if (v > 0.0 && (model.kind == ModelKind::adiabatic || model.automatic.enabled))
-      return bad(name, v, "0 with model.kind adiabatic or auto (the reduced model has no finite contact or air)");
-  }
+  if (std::string e = validate_finite_contact(c, model); !e.empty()) return e;
   if (c.static_friction || c.friction) {
     // mu_s must stay >= mu(0) of the law in force after the command.
     Model next = model;

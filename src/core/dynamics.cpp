@@ -166,7 +166,11 @@ template <ContactMode kMode>
 void motion(const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
   detail::RigidBody b(model, y);
   const bool finite = !point_contact(model);
-  if (finite) add_air(model, b, out);
+  if (finite) {  // a reused Dynamics (the sample's) must not keep the last mode's patch
+    out.patch_radius = out.drilling_torque = 0.0;
+    out.couple.setZero();
+    add_air(model, b, out);
+  }
   out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
   painleve = ModeMargins::kNone;
   if constexpr (kMode == ContactMode::slipping) {
@@ -224,6 +228,12 @@ void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y,
 }  // namespace
 
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+  // A point contact never writes the finite contact's fields: clear what an earlier patch left (derivative()
+  // needs no clearing, its Dynamics is fresh).
+  out.patch_radius = out.drilling_torque = 0.0;
+  out.couple.setZero();
+  out.air_force.setZero();
+  out.air_torque.setZero();
   ContactForceRecord record;
   evaluate_motion(model, mode, y, out, record.painleve);
   record.force = out.contact_force;

@@ -768,10 +768,8 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;
     s.normal_force = dyn.normal_force;
-    // The point path and flight leave these fields as an earlier finite evaluation set them: no patch there.
-    const bool on_patch = !point_contact(model) && mode != ContactMode::flight;
-    s.drilling_torque = on_patch ? dyn.drilling_torque : 0.0;
-    s.patch_radius = on_patch ? dyn.patch_radius : 0.0;
+    s.drilling_torque = dyn.drilling_torque;  // 0 on a point contact and in flight (evaluate_dynamics, motion)
+    s.patch_radius = dyn.patch_radius;
     s.friction_force = dyn.friction_force;
     s.com_acceleration = dyn.a_cm;
   }
