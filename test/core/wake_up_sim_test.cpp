@@ -95,14 +95,15 @@ TEST(WakeUp, GrowthRateChangesSignAtTheCriticalSpinAndTheTopFalls) {
   const double w_sim = sign_change_spin(r);
   note("simulated sign change of d ln tilt/dt [rad/s]", w_sim);
   note("simulated / tool - 1", w_sim / c.spin - 1.0);
-  // Measured (docs/results.md): the tilt turns to growth 23 % above the frozen critical spin, because the spin
+  // Measured (docs/results.md): the tilt turns to growth 26 % above the frozen critical spin, because the spin
   // changes (0.18 rad/s^2) at a rate comparable to the frozen growth rates (1e-3 1/s): the passage is not
   // quasi-static. Asserted: above the frozen value, and within 30 % (the measured shift and a margin).
   EXPECT_GT(w_sim, c.spin);
   EXPECT_LT(w_sim / c.spin, 1.30);
   // The simulated rate exceeds the frozen largest Re at every window from the start to the fall's last e-folds.
   for (const WindowRate& x : r) {
-    if (x.rate > 0.1) break;  // the fall itself, beyond the linear range
+    if (x.rate > 0.1) break;           // the fall itself, beyond the linear range
+    if (x.t < 2.0 * kWindow) continue;  // the start-up nutation (Re -8.5 1/s) still in the window
     const double frozen = spinning_stability(scene.model, SpinningState::upright, x.spin).max_real;
     EXPECT_GT(x.rate, frozen) << "t = " << x.t << ", spin " << x.spin;
   }
