@@ -168,6 +168,14 @@ struct CriticalSpin {
 CriticalSpin locate_critical_spin(const Model& model, SpinningState state, double rotor_spin, double w0, double w1,
                                   int points, const StabilityOptions& options = {});
 
+// The growth rate d ln(tilt)/dt of a spinning state's precession mode while its spin changes at spin_rate [rad/s^2]
+// (a slow passage, docs/analysis.md "The wake-up"): Re lambda of the frozen Jacobian plus the rate at which the
+// mode's eigenvector changes along the spin, -Re(l . dr/dW / (l . r)) spin_rate, with r normalised to a unit tilt
+// component (left and right eigenvectors l, r; dr/dW by a central difference of relative step 1e-4). NaN where the
+// state cannot be analysed.
+double passage_growth_rate(const Model& model, SpinningState state, double spin, double spin_rate,
+                           const StabilityOptions& options = {});
+
 // Which real part a spin sweep watches.
 enum class WatchedMode { any, precession, nutation };
 

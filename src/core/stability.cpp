@@ -479,6 +479,45 @@ CriticalSpin locate_critical_spin(const Model& model, SpinningState state, doubl
   return c;
 }
 
+namespace {
+
+// The precession mode of the spinning state at `spin`: its eigenvalue, right eigenvector normalised to r_a = 1 (the
+// tilt component along e1) and left eigenvector; false where the state cannot be analysed.
+bool precession_mode(const Model& model, SpinningState state, double spin, const StabilityOptions& options,
+                     Eigenvalue& lambda, Eigen::VectorXcd& right, Eigen::VectorXcd& left) {
+  const StabilityResult r = spinning_stability(model, state, spin, 0.0, options);
+  if (!r.exists) return false;
+  auto nearest = [](const Eigen::VectorXcd& ev, Eigenvalue target) {
+    Eigen::Index k = 0;
+    (ev.array() - target).abs().minCoeff(&k);
+    return k;
+  };
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(r.jacobian);
+  const Eigen::Index k = nearest(es.eigenvalues(), r.modes.precession);
+  lambda = es.eigenvalues()[k];
+  right = es.eigenvectors().col(k) / es.eigenvectors()(2, k);
+  const Eigen::EigenSolver<Eigen::MatrixXd> et(r.jacobian.transpose());
+  left = et.eigenvectors().col(nearest(et.eigenvalues(), lambda));
+  return true;
+}
+
+}  // namespace
+
+double passage_growth_rate(const Model& model, SpinningState state, double spin, double spin_rate,
+                           const StabilityOptions& options) {
+  Eigenvalue lambda, lp, lm;
+  Eigen::VectorXcd r, l, rp, lpv, rm, lmv;
+  const double dw = 1e-4 * std::abs(spin);  // the mode changes on the scale of the spin itself
+  if (!precession_mode(model, state, spin, options, lambda, r, l) ||
+      !precession_mode(model, state, spin + dw, options, lp, rp, lpv) ||
+      !precession_mode(model, state, spin - dw, options, lm, rm, lmv))
+    return NAN;
+  const Eigen::VectorXcd dr = (rp - rm) / (2.0 * dw);
+  const Eigenvalue drift = l.transpose() * dr;
+  const Eigenvalue norm = l.transpose() * r;
+  return lambda.real() - (drift / norm).real() * spin_rate;
+}
+
 double magnus_critical_spin_squared(const Model& model, SpinningState state) {
   const Top& top = model.top;
   const double r = top.tip_radius;
