@@ -3,8 +3,9 @@
 plane with a Hertz patch, spins down; its small tilt dies while the spin is above the upright state's critical spin
 (top_sim_stability --state upright --sweep-spin) and grows below it, until the top falls (the `fallen` fault).
 
-usage: spin_down.py RUN.csv CRITICAL_SPIN MAXWELL_KLEIN OUT.png
-RUN.csv: top_sim_run --csv (columns t, f_z, spin; the tilt is acos(f_z)). CRITICAL_SPIN, MAXWELL_KLEIN in rad/s.
+usage: spin_down.py RUN.csv CRITICAL_SPIN MAXWELL_KLEIN OUT.png [PASSAGE_ZERO]
+RUN.csv: top_sim_run --csv (columns t, f_z, spin; the tilt is acos(f_z)). CRITICAL_SPIN, MAXWELL_KLEIN and
+PASSAGE_ZERO (the zero of passage_growth_rate at the run's spin-down rate) in rad/s.
 Panel a: spin against time, the critical spin and the frictionless Maxwell-Klein limit marked; panel b: the tilt
 (log scale) with its window growth rate d ln(tilt)/dt (right axis), the crossing and the tilt 0.5 rad marked.
 """
@@ -29,7 +30,7 @@ def window_growth(t, tilt):
     return 0.5 * (mids[1:] + mids[:-1]), np.diff(peaks) / np.diff(mids)
 
 
-def main(csv, critical, maxwell_klein, out):
+def main(csv, critical, maxwell_klein, out, passage_zero="nan"):
     critical, maxwell_klein = float(critical), float(maxwell_klein)
     d = load(csv)
     t, spin, tilt = d["t"], d["spin"], np.arccos(np.clip(d["f_z"], -1.0, 1.0))
@@ -43,6 +44,9 @@ def main(csv, critical, maxwell_klein, out):
     for ax in (a, b):
         ax.axvline(t_cross, color="tab:red", lw=0.8, alpha=0.6)
         ax.axvline(t_fall, color="k", lw=0.8, alpha=0.6)
+    if not np.isnan(float(passage_zero)):
+        a.axhline(float(passage_zero), color="tab:purple", ls=":", lw=1.0,
+                  label=f"zero of the slow passage's rate {float(passage_zero):.4g} rad/s")
     a.set_ylabel("spin [rad/s]")
     a.set_title("a) spin-down on a Hertz patch (config/scenes/spin_down.yaml)")
     a.legend(fontsize=8)
@@ -73,4 +77,4 @@ def main(csv, critical, maxwell_klein, out):
 
 
 if __name__ == "__main__":
-    command_line(main, __doc__, counts=(4,))
+    command_line(main, __doc__, counts=(4, 5))
