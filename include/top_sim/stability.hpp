@@ -149,6 +149,33 @@ StabilityResult spinning_stability(const Model& model, SpinningState state, doub
 // c = (r/h) (I1 r/h - I3): omega_k^2 < 0 means no crossing (stable at every spin when a > 0, unstable when a < 0).
 double magnus_critical_spin_squared(const Model& model, SpinningState state);
 
+// An ordinary top's (com_offset f > 0) upright state on a level plane, docs/analysis.md "The wake-up": the
+// frictionless plane's (Maxwell-Klein) sleeping limit for a tip sphere, I_f^2 omega^2 > 4 I_d m g f (the smooth
+// plane's normal force acts through the sphere's centre, at lever f from the centre of mass, not f + R).
+double maxwell_klein_critical_spin(const Model& model);
+
+// Where the largest real part but the zero one of a spinning state crosses stability_tolerance, scanning `points`
+// spins from w1 down to w0 (0 < w0 < w1): the first unstable scan point below a stable one, bisected to 1e-12 of
+// the span. An ordinary top sleeps above it (found = false with the reason when the scan has no such crossing).
+struct CriticalSpin {
+  bool found = false;
+  std::string reason;
+  double spin = 0.0;       // the crossing [rad/s]
+  Eigenvalue eigenvalue;   // the eigenvalue of largest Re at the first unstable scan point, Im >= 0
+  std::string mode;        // its class: "precession", "nutation", "friction"
+  int bisections = 0;
+};
+CriticalSpin locate_critical_spin(const Model& model, SpinningState state, double rotor_spin, double w0, double w1,
+                                  int points, const StabilityOptions& options = {});
+
+// The growth rate d ln(tilt)/dt of a spinning state's precession mode while its spin changes at spin_rate [rad/s^2]
+// (a slow passage, docs/analysis.md "The wake-up"): Re lambda of the frozen Jacobian plus the rate at which the
+// mode's eigenvector changes along the spin, -Re(l . dr/dW / (l . r)) spin_rate, with r normalised to a unit tilt
+// component (left and right eigenvectors l, r; dr/dW by a central difference of relative step 1e-4). NaN where the
+// state cannot be analysed.
+double passage_growth_rate(const Model& model, SpinningState state, double spin, double spin_rate,
+                           const StabilityOptions& options = {});
+
 // Which real part a spin sweep watches.
 enum class WatchedMode { any, precession, nutation };
 

@@ -6,7 +6,7 @@ the located crossings and Magnus' critical spins.
 
 usage: stability.py SWEEP.csv OUT.png [--alpha-c A] [--alpha-c-analytic A] [--nutation-windows LO:HI,...]
                     [--windows-upright LO:HI,...] [--windows-inverted LO:HI,...] [--magnus-upright W]
-                    [--magnus-inverted W] [--title TEXT]
+                    [--magnus-inverted W] [--critical-upright W] [--maxwell-klein W] [--title TEXT]
 SWEEP.csv is written by top_sim_stability --plot (one row per analysed state; sweep = alpha, spin, upright or
 inverted).
 """
@@ -93,6 +93,8 @@ def main():
     for state in ("upright", "inverted"):
         p.add_argument(f"--windows-{state}", default="")
         p.add_argument(f"--magnus-{state}", type=float, default=float("nan"))
+    p.add_argument("--critical-upright", type=float, default=float("nan"))
+    p.add_argument("--maxwell-klein", type=float, default=float("nan"))
     p.add_argument("--title", default="")
     args = p.parse_args()
     d = load(args.csv)
@@ -109,6 +111,12 @@ def main():
             windows = {"upright": parse_windows(args.windows_upright), "inverted": parse_windows(args.windows_inverted)}
             magnus = {"upright": args.magnus_upright, "inverted": args.magnus_inverted}
             spinning_panel(ax, d, sweeps, windows, magnus, letter)
+            if not math.isnan(args.maxwell_klein):  # an ordinary top: the frictionless plane's limit, dotted
+                ax.axvline(args.maxwell_klein, color="0.4", ls=":", lw=1.2,
+                           label=f"frictionless Maxwell-Klein {args.maxwell_klein:.8g} rad/s")
+                ax.set_title(f"{letter}an ordinary top's upright state against the spin "
+                             f"(critical {args.critical_upright:.8g} rad/s)")
+                ax.legend(fontsize=7, loc="upper center", bbox_to_anchor=(0.5, -0.14), ncol=2)
         elif kind == "alpha":
             alpha_panel(ax, rows, args.alpha_c, args.alpha_c_analytic, letter)
         else:

@@ -42,7 +42,9 @@ const char* kUsage =
     "  --state S              a tippe top (top.com_offset < 0) on a level plane: its spinning state S, upright\n"
     "                         (f_hat = +n, the centre of mass below the sphere's centre) or inverted (f_hat = -n,\n"
     "                         on the stem side), next to Magnus' critical spin; without --state a tippe top's\n"
-    "                         --sweep-spin sweeps both states\n"
+    "                         --sweep-spin sweeps both states. An ordinary top (com_offset > 0): upright only,\n"
+    "                         with a patch (contact.patch_radius), mu(0) > 0 or a frictionless plane; with\n"
+    "                         --sweep-spin its critical spin (stable above) next to the Maxwell-Klein limit\n"
     "  --spin W               shell spin omega* [rad/s], nonzero, |W| <= 1e6 (default: the scene's initial.spin);\n"
     "                         a rotor keeps the scene's absolute rotor spin\n"
     "  --json FILE            the analysis at --spin as JSON (- = standard output)\n"
@@ -150,7 +152,8 @@ bool is_tippe_top(const top_sim::Scene& scene) { return scene.model.top.com_offs
 // Magnus' critical spin of a spinning state and what it means (docs/analysis.md).
 std::string magnus_text(const top_sim::Model& model, SpinningState state) {
   const double wk2 = top_sim::magnus_critical_spin_squared(model, state);
-  const bool below = state == SpinningState::upright;  // the centre of mass below the sphere's centre (a > 0)
+  // The centre of mass below the sphere's centre (Magnus' a > 0): a tippe top upright, or an ordinary top inverted.
+  const bool below = (state == SpinningState::upright) == (model.top.com_offset < 0.0);
   std::ostringstream os;
   os << std::setprecision(10) << "Magnus' critical spin (friction linear in the slip, docs/analysis.md): ";
   if (std::isfinite(wk2) && wk2 > 0.0)
@@ -158,6 +161,31 @@ std::string magnus_text(const top_sim::Model& model, SpinningState state) {
   else
     os << "omega_k^2 = " << wk2 << " <= 0: no crossing, " << (below ? "stable" : "unstable") << " at every spin";
   return os.str();
+}
+
+// An ordinary top's frictionless-plane limit (docs/analysis.md "The wake-up").
+std::string maxwell_klein_text(const top_sim::Model& model) {
+  std::ostringstream os;
+  os << std::setprecision(10) << "Maxwell-Klein critical spin (frictionless plane, I_f^2 w^2 = 4 I_d m g f): "
+     << top_sim::maxwell_klein_critical_spin(model) << " rad/s";
+  return os.str();
+}
+
+// An ordinary top's upright state: the located critical spin (stable above), printed; NaN when none is found.
+double report_critical_spin(const top_sim::Scene& scene, const Range& range) {
+  const double hi = std::max(range.from, range.to);
+  double lo = std::min(range.from, range.to);
+  if (lo <= 0.0) lo = hi / std::max(range.count - 1, 1);  // spin 0 has no spinning state: the first positive point
+  const top_sim::CriticalSpin c = top_sim::locate_critical_spin(scene.model, SpinningState::upright,
+                                                                scene.initial.rotor_spin, lo, hi, range.count);
+  (*report) << std::setprecision(10) << maxwell_klein_text(scene.model) << "\ncritical spin (largest Re but the zero "
+            << "one crosses 1e-7 1/s, bisected): ";
+  if (c.found)
+    (*report) << c.spin << " rad/s (stable above; " << c.mode << " " << complex_text(c.eigenvalue)
+              << " 1/s at the first unstable scan point)\n";
+  else
+    (*report) << "none: " << c.reason << "\n";
+  return c.found ? c.spin : NAN;
 }
 
 // The single analysis, human-readable.
@@ -170,6 +198,7 @@ void print_analysis(const top_sim::Model& model, const StabilityResult& r, std::
     (*report) << "sleeping state: alpha " << r.alpha << " rad, shell spin " << r.spin << " rad/s";
   if (model.top.has_rotor) (*report) << ", rotor spin " << r.rotor_spin << " rad/s";
   (*report) << (state ? "\n" + magnus_text(model, *state) : ", s* " + num(r.slip)) << "\n";
+  if (state && model.top.com_offset > 0.0) (*report) << maxwell_klein_text(model) << "\n";
   (*report) << "eigenvalues [1/s] of the Jacobian over u, f_hat (tangent plane), omega" << (model.top.has_rotor ? ", nu" : "")
             << ":\n  zero (free spin)  " << complex_text(r.zero) << "\n  precession        "
             << complex_text(r.modes.precession) << " (and conjugate)\n  nutation          "
@@ -370,7 +399,7 @@ bool load(const std::string& path, top_sim::Scene& scene) {
 void run_spin_sweep(const Arguments& args, const top_sim::Scene& scene, std::vector<SweepRow>& rows,
                     std::vector<std::string>& extra) {
   const Range& range = *args.sweep_spin;
-  if (!is_tippe_top(scene)) {
+  if (!is_tippe_top(scene) && !args.state) {
     const auto spins = sweep_spin(scene, range, std::nullopt);
     rows.insert(rows.end(), spins.begin(), spins.end());
     extra.push_back("--nutation-windows=" + report_windows(scene, range, top_sim::WatchedMode::nutation, "Re nutation"));
@@ -387,15 +416,18 @@ void run_spin_sweep(const Arguments& args, const top_sim::Scene& scene, std::vec
     extra.push_back("--windows-" + name + "=" + report_spinning_windows(scene, range, state));
     const double wk2 = top_sim::magnus_critical_spin_squared(scene.model, state);
     extra.push_back("--magnus-" + name + "=" + num(std::isfinite(wk2) && wk2 > 0.0 ? std::sqrt(wk2) : NAN));
+    if (!is_tippe_top(scene) && state == SpinningState::upright) {
+      extra.push_back("--critical-upright=" + num(report_critical_spin(scene, range)));
+      extra.push_back("--maxwell-klein=" + num(top_sim::maxwell_klein_critical_spin(scene.model)));
+    }
   }
 }
 
 // The --state rules (docs/interfaces.md): "" when the arguments fit the scene's top, else the message.
 std::string state_argument_error(const Arguments& args, const top_sim::Scene& scene) {
   const std::string f = num(scene.model.top.com_offset);
-  if (args.state && !is_tippe_top(scene))
-    return "--state = '" + std::string(top_sim::to_string(*args.state)) + "': only for a tippe top (top.com_offset " +
-           "< 0); this top's com_offset is " + f + " m (without --state: its sleeping state)";
+  if (args.state && args.sweep_alpha)
+    return "--sweep-alpha: not with --state (a spinning state is an equilibrium on a level plane only)";
   if (!is_tippe_top(scene)) return "";
   if (args.sweep_alpha)
     return "--sweep-alpha: not for a tippe top (top.com_offset = " + f + " m < 0): its spinning states are " +

@@ -7,6 +7,7 @@
 #include <functional>
 
 #include "top_sim/dynamics.hpp"
+#include "top_sim/finite_contact.hpp"
 #include "top_sim/format.hpp"
 
 namespace top_sim {
@@ -65,7 +66,13 @@ Eigen::VectorXd reduced_rate(const Model& model, const ReducedCoordinates& rc, c
 Eigen::VectorXd difference_scales(const Model& model, const ReducedCoordinates& rc, const StateVector& y) {
   const Eigen::Vector3d w = angular_velocity(y);
   const ContactKinematics k = contact_kinematics(model, in_plane_velocity(y), w);
-  const double width = std::max(k.v_t.norm(), model.regularization_speed);
+  // With a patch the friction turns on the scale of the generalised slip |w| = |(v_t, Rbar omega_n)| (section 12):
+  // at an upright top v_t = 0 and Rbar |omega_n| is the width; Rbar = 0 for a point contact (unchanged there).
+  const FiniteContact& fc = model.finite_contact;
+  const double weight = model.top.mass * model.plane.gravity * std::cos(model.plane.inclination);
+  const double lever =
+      fc.has_patch() ? drilling_lever(fc.pressure, patch_radius(fc, model.top.tip_radius, weight)) : 0.0;
+  const double width = std::max({k.v_t.norm(), lever * std::abs(w.z()), model.regularization_speed});
   const double R = model.top.tip_radius;
   const double spin_scale = std::max(w.norm(), 1.0);
   const double omega_scale = R > 0.0 ? std::min(width / R, spin_scale) : spin_scale;
@@ -378,21 +385,41 @@ StateVector spinning_state(const Model& model, SpinningState state, double spin,
   return y;
 }
 
+namespace {
+
+// A plane without friction at any slip (coulomb mu = 0): its linearisation is exact, Maxwell-Klein's smooth plane.
+bool frictionless(const FrictionLaw& law) { return law.kind == FrictionLawKind::coulomb && law.mu == 0.0; }
+
+}  // namespace
+
 std::string spinning_state_refusal(const Model& model, SpinningState state) {
   const std::string name = to_string(state);
-  if (!(model.top.com_offset < 0.0))
-    return "top.com_offset = " + format_number(model.top.com_offset) + " m: the " + name +
-           " spinning state is a tippe top's (com_offset < 0, the centre of mass below the sphere's centre)";
+  const double f = model.top.com_offset;
+  if (f == 0.0)
+    return "top.com_offset = 0 m: a ball's figure axis is only a marker, it has no " + name + " spinning state";
+  if (f > 0.0 && state == SpinningState::inverted)
+    return "top.com_offset = " + format_number(f) + " m: an ordinary top (com_offset > 0) has no inverted state " +
+           "on its tip sphere (it would stand on its body); only --state upright";
   if (model.plane.inclination != 0.0)
     return "plane.inclination = " + format_number(model.plane.inclination) + " rad: the " + name +
            " spinning state is an equilibrium on a level plane only (plane.inclination 0)";
   if (state == SpinningState::inverted && std::cos(model.top.max_tilt) > -1.0 + 1e-12)
     return "top.max_tilt = " + format_number(model.top.max_tilt) + " rad: the inverted state (tilt pi) needs " +
            "max_tilt = pi (only the sphere touches the plane)";
+  if (frictionless(model.friction)) return "";
+  if (model.finite_contact.has_patch()) {
+    // A spinning patch pivots (s = 1 at v_t = 0): F = -mu(1) N v_t / |w| is smooth there.
+    const double mu1 = friction_coefficient(model.friction, 1.0);
+    if (!(mu1 > 0.0))
+      return "mu(1) = " + format_number(mu1) + ": a pivoting patch (s = 1) has no friction under this law, so the " +
+             "linearisation is frictionless and does not decide stability (needs mu(1) > 0, or coulomb mu 0)";
+    return "";
+  }
   const double mu0 = friction_coefficient(model.friction, 0.0);
   if (!(mu0 > 0.0))
-    return "mu(0) = " + format_number(mu0) + ": the friction law has no friction at zero slip, so the linearisation " +
-           "at v_t = 0 is frictionless and does not decide stability (needs mu(0) > 0, e.g. coulomb)";
+    return "mu(0) = " + format_number(mu0) + ": a point contact at v_t = 0 sits at the friction law's kink (no " +
+           "friction at zero slip, the linearisation is frictionless and does not decide stability); needs mu(0) > 0 " +
+           "(e.g. coulomb), a patch (contact.patch_radius > 0 or hertz), or a frictionless plane (coulomb mu 0)";
   return "";
 }
 
@@ -407,6 +434,88 @@ StabilityResult spinning_stability(const Model& model_in, SpinningState state, d
   r.reason = spinning_state_refusal(model, state);
   if (r.reason.empty()) analyse_state(model, spinning_state(model, state, spin, r.rotor_spin), options, r);
   return r;
+}
+
+double maxwell_klein_critical_spin(const Model& model) {
+  const Top& top = model.top;
+  return std::sqrt(4.0 * top.inertia_transverse * top.mass * model.plane.gravity * top.com_offset) / top.inertia_axial;
+}
+
+CriticalSpin locate_critical_spin(const Model& model, SpinningState state, double rotor_spin, double w0, double w1,
+                                  int points, const StabilityOptions& options) {
+  CriticalSpin c;
+  auto analyse = [&](double w) { return spinning_stability(model, state, w, rotor_spin, options); };
+  auto side = [&](double w) {
+    const StabilityResult r = analyse(w);
+    return r.exists ? (r.max_real > options.stability_tolerance ? 1 : 0) : -1;
+  };
+  if (!(0.0 < w0 && w0 < w1) || points < 2) {
+    c.reason = "the scan needs 0 < w0 < w1 and at least 2 points";
+    return c;
+  }
+  if (const std::string why = spinning_state_refusal(model, state); !why.empty()) {
+    c.reason = why;
+    return c;
+  }
+  if (side(w1) != 0) {
+    c.reason = "the state is not stable at the top of the scan, " + format_number(w1) + " rad/s";
+    return c;
+  }
+  double prev = w1;
+  for (int i = 1; i < points; ++i) {
+    const double w = w1 - (w1 - w0) * i / (points - 1);
+    if (side(w) == 1) {
+      const StabilityResult r = analyse(w);
+      for (const Eigenvalue& v : r.eigenvalues)
+        if (v != r.zero && v.real() == r.max_real) c.eigenvalue = {v.real(), std::abs(v.imag())};
+      c.mode = mode_of(r, c.eigenvalue);
+      c.spin = bisect_edge(w, prev, 1e-12 * (w1 - w0), side, c.bisections);
+      c.found = true;
+      return c;
+    }
+    prev = w;
+  }
+  c.reason = "stable at every scanned spin down to " + format_number(w0) + " rad/s";
+  return c;
+}
+
+namespace {
+
+// The precession mode of the spinning state at `spin`: its eigenvalue, right eigenvector normalised to r_a = 1 (the
+// tilt component along e1) and left eigenvector; false where the state cannot be analysed.
+bool precession_mode(const Model& model, SpinningState state, double spin, const StabilityOptions& options,
+                     Eigenvalue& lambda, Eigen::VectorXcd& right, Eigen::VectorXcd& left) {
+  const StabilityResult r = spinning_stability(model, state, spin, 0.0, options);
+  if (!r.exists) return false;
+  auto nearest = [](const Eigen::VectorXcd& ev, Eigenvalue target) {
+    Eigen::Index k = 0;
+    (ev.array() - target).abs().minCoeff(&k);
+    return k;
+  };
+  const Eigen::EigenSolver<Eigen::MatrixXd> es(r.jacobian);
+  const Eigen::Index k = nearest(es.eigenvalues(), r.modes.precession);
+  lambda = es.eigenvalues()[k];
+  right = es.eigenvectors().col(k) / es.eigenvectors()(2, k);
+  const Eigen::EigenSolver<Eigen::MatrixXd> et(r.jacobian.transpose());
+  left = et.eigenvectors().col(nearest(et.eigenvalues(), lambda));
+  return true;
+}
+
+}  // namespace
+
+double passage_growth_rate(const Model& model, SpinningState state, double spin, double spin_rate,
+                           const StabilityOptions& options) {
+  Eigenvalue lambda, lp, lm;
+  Eigen::VectorXcd r, l, rp, lpv, rm, lmv;
+  const double dw = 1e-4 * std::abs(spin);  // the mode changes on the scale of the spin itself
+  if (!precession_mode(model, state, spin, options, lambda, r, l) ||
+      !precession_mode(model, state, spin + dw, options, lp, rp, lpv) ||
+      !precession_mode(model, state, spin - dw, options, lm, rm, lmv))
+    return NAN;
+  const Eigen::VectorXcd dr = (rp - rm) / (2.0 * dw);
+  const Eigenvalue drift = l.transpose() * dr;
+  const Eigenvalue norm = l.transpose() * r;
+  return lambda.real() - (drift / norm).real() * spin_rate;
 }
 
 double magnus_critical_spin_squared(const Model& model, SpinningState state) {

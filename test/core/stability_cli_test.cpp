@@ -109,6 +109,16 @@ TEST(StabilityCli, SweepsReportAlphaCAndTheGyrostatWindow) {
   EXPECT_TRUE(contains(r.out, "spin windows where Re nutation > 0 (edges bisected): [-0.55189")) << r.out;
 }
 
+// An ordinary top's upright state (docs/analysis.md "The wake-up"): the critical spin next to Maxwell-Klein.
+TEST(StabilityCli, OrdinaryTopUprightReportsTheCriticalSpin) {
+  const CliResult r = run(scene("spin_down") + " --state upright --sweep-spin 0:100:51");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  EXPECT_TRUE(contains(r.out, "Maxwell-Klein critical spin (frictionless plane, I_f^2 w^2 = 4 I_d m g f): 34.31")) << r.out;
+  EXPECT_TRUE(contains(r.out, "critical spin (largest Re but the zero one crosses 1e-7 1/s, bisected): ")) << r.out;
+  EXPECT_TRUE(contains(r.out, "rad/s (stable above; precession")) << r.out;
+  EXPECT_TRUE(contains(r.out, "unstable below, stable above")) << r.out;
+}
+
 // A tippe top (docs/interfaces.md): --state's errors exit 2 naming option and value, an inclined plane exits 3.
 TEST(StabilityCli, StateErrorsNameTheOptionAndValue) {
   struct Case {
@@ -117,7 +127,7 @@ TEST(StabilityCli, StateErrorsNameTheOptionAndValue) {
   };
   const Case cases[] = {
       {"tippe_top", " --state sideways", "--state = 'sideways'", "upright or inverted", 2},
-      {"default", " --state upright", "--state = 'upright'", "only for a tippe top (top.com_offset < 0)", 2},
+      {"default", " --state upright", "plane.inclination = 0.1", "level plane only", 3},  // an ordinary top
       {"tippe_top", "", "top.com_offset = -0.005", "give --state upright|inverted", 2},
       {"tippe_top", " --sweep-alpha 0.1:0.2:3", "--sweep-alpha", "level plane only", 2},
   };
