@@ -102,6 +102,7 @@ def test_hertz_patch_needs_the_materials(tmp_path, capsys):
     (["--samples", "3", "--seed", "1", "--alpha", "0.1,0.2"], ["'0.1,0.2'", "one value"]),
     (["--alpha", "normal:0.1:0.01"], ["--samples"]),
     (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--top", "aluminium,steel"], ["one top"]),
+    (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--patch-radius", "0,hertz"], ["one patch radius"]),
     (["--scheduler", "tcp://127.0.0.1:1", "--threads", "2"], ["--threads"]),
     (["--resume"], ["--out FILE"]),
     (["--connect-timeout", "0"], ["--connect-timeout = '0'", "(0, 3600]"])])

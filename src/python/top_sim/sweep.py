@@ -241,7 +241,8 @@ def parse_arguments(argv):
     points = parsed["points"]
     if monte_carlo:
         if len(points) != 1:
-            raise BadArgument("--top, --plane: with --samples, one top and one plane (%d combinations given)"
+            raise BadArgument("--top, --plane, --patch-radius: with --samples, one top, one plane and one patch "
+                              "radius (%d combinations given)"
                               % len(points))
         points = monte_carlo_points(points[0], dists, samples, seed)
     keys = point_keys(points, parsed["settings"], monte_carlo)
