@@ -18,6 +18,8 @@ const char* const kSweepOptionsUsage =
     "  --spin LIST         initial shell spin [rad/s], nonzero (default 200)\n"
     "  --mu-c LIST         override the paper law's mu_c, > 0\n"
     "  --s-c LIST          override the paper law's s_c, in (0, 1]\n"
+    "  --patch-radius LIST contact.patch_radius (physics.md section 12): each >= 0 [m], or hertz (from the normal\n"
+    "                      force and the top's and plane's materials) (default 0 = the point contact)\n"
     "  Each point:\n"
     "  --start MODE        tilted (default: at rest, figure axis tilted by --tilt) | launched (the analytic\n"
     "                      sleeping state perturbed by --perturbation of extra tilt: slip starts near s*,\n"
@@ -85,6 +87,29 @@ std::vector<std::string> name_list(const std::string& flag, const std::string& t
   return names;
 }
 
+// --patch-radius's LIST: numbers (as every LIST, A:B:N too) or hertz among comma-separated items.
+std::vector<PatchRadius> patch_list(const std::string& flag, const std::string& text) {
+  const std::string range = ">= 0 [m], or hertz";
+  const auto admits = [](double v) { return v >= 0.0; };
+  std::vector<PatchRadius> patches;
+  if (text.find("hertz") == std::string::npos) {
+    for (double v : number_list(flag, text, admits, range)) patches.push_back(PatchRadius{v, false});
+    return patches;
+  }
+  for (const auto& item : split(text, ',')) {
+    if (item == "hertz") {
+      patches.push_back(PatchRadius{0.0, true});
+      continue;
+    }
+    char* end = nullptr;
+    const double v = std::strtod(item.c_str(), &end);
+    if (item.empty() || *end != '\0' || !std::isfinite(v) || !admits(v))
+      throw BadArgument{flag + " = '" + text + "': the item '" + item + "' must be " + range};
+    patches.push_back(PatchRadius{v, false});
+  }
+  return patches;
+}
+
 using Value = std::function<std::string()>;  // the flag's value (throws BadArgument when it has none)
 
 // One of the grid's flags into `o`; false when `flag` is not a grid flag.
@@ -100,6 +125,8 @@ bool read_grid_option(const std::string& a, const Value& value, SweepOptions& o)
     const auto v = number_list(a, value(), [range](double x) { return range.admits(x); }, range.text());
     auto& target = mu ? o.mu_cs : o.s_cs;
     target.assign(v.begin(), v.end());
+  } else if (a == "--patch-radius") {
+    o.patches = patch_list(a, value());
   } else if (a == "--top") {
     o.tops = name_list(a, value());
   } else if (a == "--plane") {
@@ -167,8 +194,9 @@ std::vector<SweepPoint> make_sweep_grid(const SweepOptions& o) {
     for (const auto& plane : o.planes)
       for (const auto& mu_c : o.mu_cs)
         for (const auto& s_c : o.s_cs)
-          for (double spin : o.spins)
-            for (double alpha : o.alphas) grid.push_back(SweepPoint{top, plane, alpha, spin, mu_c, s_c});
+          for (const auto& patch : o.patches)
+            for (double spin : o.spins)
+              for (double alpha : o.alphas) grid.push_back(SweepPoint{top, plane, alpha, spin, mu_c, s_c, patch});
   return grid;
 }
 

@@ -15,6 +15,7 @@ struct SweepOptions {
   std::vector<double> alphas, spins = {200.0};
   std::vector<std::string> tops = {"aluminium"}, planes = {"pmma"};
   std::vector<std::optional<double>> mu_cs = {std::nullopt}, s_cs = {std::nullopt};
+  std::vector<PatchRadius> patches = {PatchRadius{}};
   SweepSettings settings;
   std::string out_path = "-";
   unsigned threads = 0;  // 0 = all cores
@@ -27,7 +28,7 @@ extern const char* const kSweepOptionsUsage;
 // the value and the allowed range. Returns false when it was asked for help (-h, --help).
 bool parse_sweep_options(const std::vector<std::string>& args, SweepOptions& o);
 
-// Every combination of the grid's values: top, plane, mu_c, s_c, spin outermost to alpha innermost.
+// Every combination of the grid's values: top, plane, mu_c, s_c, patch radius, spin outermost to alpha innermost.
 std::vector<SweepPoint> make_sweep_grid(const SweepOptions& o);
 
 }  // namespace top_sim

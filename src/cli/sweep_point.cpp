@@ -44,7 +44,29 @@ std::string num(double v) {
   return os.str();
 }
 
+// The scene's contact.patch_radius, only when there is a patch: a point-contact scene stays the file's own.
+void set_patch(const PatchRadius& patch, YAML::Node& root) {
+  if (patch.hertz) root["contact"]["patch_radius"] = "hertz";
+  else if (patch.metres > 0.0) root["contact"]["patch_radius"] = patch.metres;
+}
+
+// parse_scene, with a refused patch radius named as the flag that asked for it.
+Scene parse_point_scene(const YAML::Node& root, const std::string& source, const std::string& config_dir,
+                        const PatchRadius& patch) {
+  try {
+    return parse_scene(root, source, config_dir);
+  } catch (const SceneError& e) {
+    if (e.key != "contact.patch_radius") throw;
+    const std::string what = e.what(), prefix = e.file + ": " + e.key + ": ";
+    const std::string problem = what.compare(0, prefix.size(), prefix) == 0 ? what.substr(prefix.size()) : what;
+    throw SceneError(e.file, e.key, "--patch-radius = '" + patch_radius_text(patch) + "' for this top and plane: " +
+                                        problem + " (or give --patch-radius a number >= 0 [m])");
+  }
+}
+
 }  // namespace
+
+std::string patch_radius_text(const PatchRadius& patch) { return patch.hertz ? "hertz" : num(patch.metres); }
 
 Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
   const std::string config_dir = settings.config_dir.empty() ? default_config_dir() : settings.config_dir;
@@ -59,9 +81,12 @@ Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
   root["initial"]["tilt"] = settings.tilt;
   root["initial"]["spin"] = p.spin;
   root["duration"] = settings.max_duration;
+  set_patch(p.patch, root);
   std::ostringstream source;
-  source << "sweep point (top " << p.top << ", plane " << p.plane << ", alpha " << p.alpha << ", spin " << p.spin << ")";
-  Scene scene = parse_scene(root, source.str(), config_dir);
+  source << "sweep point (top " << p.top << ", plane " << p.plane << ", alpha " << p.alpha << ", spin " << p.spin;
+  if (p.patch.hertz || p.patch.metres > 0.0) source << ", patch_radius " << patch_radius_text(p.patch);
+  source << ")";
+  Scene scene = parse_point_scene(root, source.str(), config_dir, p.patch);
   if (settings.start == SweepStart::launched) {
     // Start inside the sleeping state's basin: slip near s*, not s = 1 (which runs away close to alpha_c).
     const StationaryState st = stationary_state(scene.model, p.spin);
@@ -178,7 +203,7 @@ SweepResult run_sweep_point(const SweepPoint& p, const SweepSettings& settings) 
 
 void write_sweep_header(std::ostream& os) {
   os << "top,plane,mu_c,s_c,spin,alpha,tan_alpha,s_stable,s_unstable,phi_star,phi_measured,"
-        "tan_half_phi_measured,outcome,regime,sim_seconds,cpu_seconds,steps,rhs_evaluations\n";
+        "tan_half_phi_measured,outcome,regime,sim_seconds,cpu_seconds,steps,rhs_evaluations,patch_radius\n";
 }
 
 void write_sweep_row(std::ostream& os, const SweepResult& r) {
@@ -188,7 +213,7 @@ void write_sweep_row(std::ostream& os, const SweepResult& r) {
      << num(r.s_unstable >= 0.0 ? r.s_unstable : nan) << ',' << num(r.phi_star.value_or(nan)) << ','
      << num(r.phi.value_or(nan)) << ',' << num(r.tan_half.value_or(nan)) << ',' << r.outcome << ','
      << to_string(r.regime) << ',' << num(r.sim_seconds) << ',' << num(r.cpu_seconds) << ',' << r.steps << ','
-     << r.rhs_evaluations << '\n';
+     << r.rhs_evaluations << ',' << patch_radius_text(r.point.patch) << '\n';
 }
 
 }  // namespace top_sim

@@ -16,6 +16,15 @@ enum class SweepStart {
   launched,  // the sleeping state's velocity, its tilt + launch_perturbation: starts near s*, not s = 1
 };
 
+// contact.patch_radius of a point (physics.md section 12): a fixed radius, or hertz (from N and the materials).
+struct PatchRadius {
+  double metres = 0.0;  // 0 = the point contact
+  bool hertz = false;
+};
+
+// The patch radius as its CSV column and its --patch-radius item print it: hertz, or the number.
+std::string patch_radius_text(const PatchRadius& patch);
+
 // What to simulate at one grid point; unset optionals keep the values of the named files.
 struct SweepPoint {
   std::string top = "aluminium";  // name in <config>/tops, or a path to a .yaml file
@@ -24,6 +33,7 @@ struct SweepPoint {
   double spin = 200.0;            // initial shell spin [rad/s]
   std::optional<double> mu_c;     // paper law override
   std::optional<double> s_c;      // paper law override
+  PatchRadius patch;              // contact.patch_radius (default: the point contact)
 };
 
 // How every point is simulated.

@@ -24,10 +24,25 @@ std::optional<double> number_or_none(const py::dict& d, const char* key) {
   return d[key].cast<double>();
 }
 
+// A patch radius as a plain value that pickles: "hertz", or the number [m].
+py::object patch_object(const PatchRadius& patch) {
+  return patch.hertz ? py::object(py::str("hertz")) : py::object(py::float_(patch.metres));
+}
+
+PatchRadius patch_from(const py::dict& d) {
+  if (!d.contains("patch_radius")) return PatchRadius{};  // a point dict of an older caller: the point contact
+  const py::object v = d["patch_radius"];
+  if (py::isinstance<py::str>(v)) {
+    if (v.cast<std::string>() != "hertz") throw py::value_error("patch_radius: a number >= 0 [m], or 'hertz'");
+    return PatchRadius{0.0, true};
+  }
+  return PatchRadius{v.cast<double>(), false};
+}
+
 py::dict point_dict(const SweepPoint& p) {
   return py::dict(py::arg("top") = p.top, py::arg("plane") = p.plane, py::arg("alpha") = p.alpha,
                   py::arg("spin") = p.spin, py::arg("mu_c") = optional_number(p.mu_c),
-                  py::arg("s_c") = optional_number(p.s_c));
+                  py::arg("s_c") = optional_number(p.s_c), py::arg("patch_radius") = patch_object(p.patch));
 }
 
 SweepPoint point_from(const py::dict& d) {
@@ -38,6 +53,7 @@ SweepPoint point_from(const py::dict& d) {
   p.spin = d["spin"].cast<double>();
   p.mu_c = number_or_none(d, "mu_c");
   p.s_c = number_or_none(d, "s_c");
+  p.patch = patch_from(d);
   return p;
 }
 

@@ -55,7 +55,9 @@ def rows_are_valid(text, header):
 
 @pytest.mark.parametrize("args", [
     ["--alpha", "2"], ["--alpha", "0.1:0.2:0"], ["--spin", "0"], ["--mu-c", "-1"], ["--tol", "x"], ["--bogus"],
-    ["--threads", "0"], ["--start", "sideways"], ["--alpha"], ["--top", "a,,b"]])
+    ["--threads", "0"], ["--start", "sideways"], ["--alpha"], ["--top", "a,,b"], ["--patch-radius", "-1e-3"],
+    ["--patch-radius", "nan"], ["--patch-radius", "hertzz"], ["--patch-radius", "0,hertzz"],
+    ["--patch-radius", "hertz,-1"]])
 def test_bad_arguments_give_top_sim_sweeps_messages(args, capsys):
     if not SWEEP_BINARY:
         pytest.skip("TOP_SIM_SWEEP_BINARY not set (ctest sets it)")
@@ -73,6 +75,19 @@ def test_bad_grid_point_names_the_key(capsys):
     assert "bad grid point" in err and "friction" in err and "no_such_plane" in err
 
 
+def test_hertz_patch_needs_the_materials(tmp_path, capsys):
+    top = tmp_path / "bare_top.yaml"  # the aluminium top without young_modulus and poisson_ratio
+    top.write_text("".join(line for line in open(os.path.join(top_sim.config_dir(), "tops", "aluminium.yaml"))
+                           if not line.startswith(("young_modulus", "poisson_ratio"))))
+    args = ["--alpha", "0.1", "--top", str(top), "--patch-radius", "0,hertz"]
+    assert sweep.main(args) == 2
+    ours = capsys.readouterr().err
+    assert "--patch-radius = 'hertz'" in ours and "young_modulus" in ours and ">= 0 [m]" in ours
+    if SWEEP_BINARY:
+        theirs = subprocess.run([SWEEP_BINARY] + args, capture_output=True, text=True)
+        assert theirs.returncode == 2 and "--patch-radius = 'hertz'" in theirs.stderr
+
+
 @pytest.mark.parametrize("args, words", [
     (["--samples", "3", "--alpha", "0.1"], ["--seed"]),
     (["--seed", "1", "--alpha", "0.1"], ["--seed = '1'", "--samples"]),
@@ -87,6 +102,7 @@ def test_bad_grid_point_names_the_key(capsys):
     (["--samples", "3", "--seed", "1", "--alpha", "0.1,0.2"], ["'0.1,0.2'", "one value"]),
     (["--alpha", "normal:0.1:0.01"], ["--samples"]),
     (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--top", "aluminium,steel"], ["one top"]),
+    (["--samples", "3", "--seed", "1", "--alpha", "0.1", "--patch-radius", "0,hertz"], ["one patch radius"]),
     (["--scheduler", "tcp://127.0.0.1:1", "--threads", "2"], ["--threads"]),
     (["--resume"], ["--out FILE"]),
     (["--connect-timeout", "0"], ["--connect-timeout = '0'", "(0, 3600]"])])
@@ -140,6 +156,20 @@ def test_local_cluster_rows_equal_top_sim_sweeps(tmp_path):
     assert {line.split(",")[12] for line in ours[1:]} >= {"sliding", "unconverged"}
 
 
+def test_hertz_patch_rows_equal_top_sim_sweeps_and_move_phi(tmp_path):
+    args = ["--alpha", "0.1", "--patch-radius", "0,hertz", "--start", "launched", "--max-path", "4"]
+    out = tmp_path / "patch.csv"
+    r = python_sweep(args + ["--threads", "2", "--out", str(out)])
+    assert r.returncode == 0, r.stderr
+    ours = out.read_text().splitlines()
+    assert without_cpu(ours) == without_cpu(reference_rows(args, tmp_path))
+    rows = list(csv.DictReader(io.StringIO("\n".join(ours))))
+    assert [row["patch_radius"] for row in rows] == ["0", "hertz"]
+    point, patch = (float(row["phi_measured"]) for row in rows)
+    # The drilling torque turns the path: more than the sweep's phi tolerance (1e-6 rad) times a thousand.
+    assert abs(patch - point) > 1e-3, (point, patch)
+
+
 def test_interrupted_sweep_leaves_a_valid_file_and_resume_completes_it(tmp_path):
     args = ["--alpha", "0.03:0.07:5", "--max-path", "12"]  # 0.1 to 0.4 s of CPU per point
     out = tmp_path / "partial.csv"
@@ -165,7 +195,7 @@ def test_interrupted_sweep_leaves_a_valid_file_and_resume_completes_it(tmp_path)
 
 def test_resume_refuses_another_sweeps_file(tmp_path, capsys):
     out = tmp_path / "other.csv"
-    out.write_text(top_sim.SWEEP_HEADER + "\n" + "steel,steel,0.2,0.7,200,0.1" + ",0" * 12 + "\n")
+    out.write_text(top_sim.SWEEP_HEADER + "\n" + "steel,steel,0.2,0.7,200,0.1" + ",0" * 13 + "\n")
     assert sweep.main(QUICK + ["--out", str(out), "--resume"]) == 2
     assert "does not have" in capsys.readouterr().err
 

@@ -241,7 +241,8 @@ def parse_arguments(argv):
     points = parsed["points"]
     if monte_carlo:
         if len(points) != 1:
-            raise BadArgument("--top, --plane: with --samples, one top and one plane (%d combinations given)"
+            raise BadArgument("--top, --plane, --patch-radius: with --samples, one top, one plane and one patch "
+                              "radius (%d combinations given)"
                               % len(points))
         points = monte_carlo_points(points[0], dists, samples, seed)
     keys = point_keys(points, parsed["settings"], monte_carlo)
@@ -257,20 +258,28 @@ def number_text(v):
     return "nan" if not math.isfinite(v) else "%.10g" % v
 
 
+def patch_text(patch):
+    """The patch_radius column as the CSV writes it: hertz, or the number."""
+    return patch if isinstance(patch, str) else number_text(patch)
+
+
 def point_keys(points, settings, monte_carlo):
     """Each point's row key: its first columns as the row will print them (top, plane, mu_c, s_c, spin, alpha;
-    the sample number first in Monte Carlo). Builds every point's scene first, as top_sim_sweep does."""
+    the sample number first in Monte Carlo) and its last, patch_radius. Builds every point's scene first, as
+    top_sim_sweep does."""
     keys = []
     for i, p in enumerate(points):
         mu_c, s_c = _core.sweep_scene_law(p, settings)
         key = (p["top"], p["plane"], number_text(mu_c), number_text(s_c), number_text(p["spin"]),
-               number_text(p["alpha"]))
+               number_text(p["alpha"]), patch_text(p.get("patch_radius", 0.0)))
         keys.append(((str(i),) + key) if monte_carlo else key)
     return keys
 
 
 def row_key(plan, row):
-    return tuple(row.split(",")[:len(plan.keys[0])])
+    """The key of a row: the columns point_keys names, the patch_radius column last (where the CSV has it)."""
+    columns = row.split(",")
+    return tuple(columns[:len(plan.keys[0]) - 1] + columns[-1:])
 
 
 # ---- the CSV file ----------------------------------------------------------------------------------------------
