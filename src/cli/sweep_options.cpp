@@ -87,16 +87,23 @@ std::vector<std::string> name_list(const std::string& flag, const std::string& t
   return names;
 }
 
-// --patch-radius's LIST: numbers (as every LIST, A:B:N too) or hertz among comma-separated items.
+// --patch-radius's LIST: A:B:N of numbers, or comma-separated items each a number or hertz.
 std::vector<PatchRadius> patch_list(const std::string& flag, const std::string& text) {
   const std::string range = ">= 0 [m], or hertz";
   const auto admits = [](double v) { return v >= 0.0; };
   std::vector<PatchRadius> patches;
-  if (text.find("hertz") == std::string::npos) {
-    for (double v : number_list(flag, text, admits, range)) patches.push_back(PatchRadius{v, false});
+  if (text.find(':') != std::string::npos) {
+    try {
+      for (double v : number_list(flag, text, admits, range)) patches.push_back(PatchRadius{v, false});
+    } catch (const BadArgument& e) {
+      if (e.message.find(range) != std::string::npos) throw;
+      throw BadArgument{e.message + " (each radius " + range + ")"};  // "not a finite number" names no range
+    }
     return patches;
   }
-  for (const auto& item : split(text, ',')) {
+  const auto items = split(text, ',');
+  if (items.empty()) throw BadArgument{flag + " = '" + text + "': empty list"};
+  for (const auto& item : items) {
     if (item == "hertz") {
       patches.push_back(PatchRadius{0.0, true});
       continue;
@@ -104,7 +111,8 @@ std::vector<PatchRadius> patch_list(const std::string& flag, const std::string& 
     char* end = nullptr;
     const double v = std::strtod(item.c_str(), &end);
     if (item.empty() || *end != '\0' || !std::isfinite(v) || !admits(v))
-      throw BadArgument{flag + " = '" + text + "': the item '" + item + "' must be " + range};
+      throw BadArgument{flag + " = '" + text + "': " + (items.size() > 1 ? "the item '" + item + "' " : "") +
+                        "must be " + range};
     patches.push_back(PatchRadius{v, false});
   }
   return patches;

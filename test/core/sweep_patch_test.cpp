@@ -68,7 +68,8 @@ TEST(SweepPatchRadius, BadValuesNameTheFlagValueAndRange) {
     EXPECT_NE(m.find("--patch-radius = '" + bad + "'"), std::string::npos) << bad << ": " << m;
   }
   EXPECT_NE(refusal({"--patch-radius", "-1"}).find(">= 0 [m], or hertz"), std::string::npos);
-  EXPECT_NE(refusal({"--patch-radius", "hertzz"}).find(">= 0 [m], or hertz"), std::string::npos);
+  for (const std::string& bad : {"hertzz", "nan", "0,nan", "0:nan:3", "-1:0:3"})
+    EXPECT_NE(refusal({"--patch-radius", bad}).find(">= 0 [m], or hertz"), std::string::npos) << bad;
   EXPECT_NE(refusal({"--patch-radius"}).find("needs a value"), std::string::npos);
 }
 
