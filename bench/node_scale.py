@@ -11,11 +11,13 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor,
   - start-up: until ~list names every top (startup_s); until the tops' own topics are all advertised (topics_s:
     they may follow in the background, docs/ros.md "Many tops: start-up"); the time from which no top is behind
-    through the end of the window (caught_up_s). --settle S waits, before the warm-up, until no top has been
-    behind for S seconds in a row.
+    up to the start of the window (caught_up_s). --settle S waits, before the warm-up, until no top has been
+    behind for S seconds in a row; caught_up_s looks up to the window's start (the command probe of the window takes
+    its top out of the reduced model on purpose). --topics-last measures the window first and waits for the topics
+    after it, then takes the CPU share again (cpu_share_after_topics).
 
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
-                      [--scene FILE] [--settle S]
+                      [--scene FILE] [--settle S] [--topics-last [--topics-timeout S]]
                       [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
@@ -221,8 +223,10 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
         diag = Diagnostics(rospy)
         # The tops' own topics may still be advertised in the background (docs/ros.md): the window waits for them
         # and for every top to keep real time (args.settle s in a row), then measures.
-        t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.settle_timeout)
-        topics = None if t_topics is None else t_topics - t_start
+        topics = None
+        if not args.topics_last:
+            t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.settle_timeout)
+            topics = None if t_topics is None else t_topics - t_start
         settled = diag.settled(args.settle, timeout=args.settle_timeout)
         states = Arrivals(rospy, NODE + '/top_states')
         tfs = Arrivals(rospy, '/tf')
@@ -238,16 +242,31 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             k += 1
             time.sleep(0.5)
         t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
+        caught_up = diag.caught_up(t_start, t0)
         cpu = (c1 - c0) / nh.CLK_TCK / (t1 - t0)
         lat = latency.samples
         states_hz = states.rate(t0, t1)
         d = diag.values
+        after = {}
+        if args.topics_last:  # the tops' own topics may still be on their way: wait, then the CPU share again
+            after['topics_pending_in_window'] = number(d.get(PENDING))
+            t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.topics_timeout)
+            topics = None if t_topics is None else t_topics - t_start
+            if t_topics is not None:
+                time.sleep(args.warmup)
+                t2, c2 = time.perf_counter(), nh.cpu_ticks(pid)
+                time.sleep(args.seconds)
+                t3, c3 = time.perf_counter(), nh.cpu_ticks(pid)
+                after['cpu_share_after_topics'] = round((c3 - c2) / nh.CLK_TCK / (t3 - t2), 4)
+                after['top_states_hz_after_topics'] = round(states.rate(t2, t3), 2)
+                after['tops_behind_after_topics'] = number(diag.values.get('tops falling behind'))
         return {
             'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if pin_cpu is None else ' cpu%d' % pin_cpu),
             'run': index,
             'startup_s': round(startup, 2),
             'topics_s': None if topics is None else round(topics, 2),
-            'caught_up_s': None if diag.caught_up(t_start, t1) is None else round(diag.caught_up(t_start, t1), 2),
+            # up to the window: its command probe takes the last top out of the reduced model on purpose
+            'caught_up_s': None if caught_up is None else round(caught_up, 2),
             'settled': settled,
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
@@ -259,6 +278,7 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             'tops_behind': d.get('tops falling behind'), 'achieved_rtf': d.get('achieved real-time factor'),
             'publish_rate_achieved': d.get('publish rate achieved [Hz]'),
             'load_before': round(load0, 2), 'load_after': round(nh.loadavg_1min(), 2),
+            **after,
         }
     finally:
         for sub in subs:
@@ -290,6 +310,10 @@ def parse_args():
     p.add_argument('--settle', type=float, default=0.0,
                    help='before the window, wait until no top has been behind for this many seconds (diagnostics)')
     p.add_argument('--settle-timeout', type=float, default=900.0)
+    p.add_argument('--topics-last', action='store_true',
+                   help='measure the window once no top is behind, then wait for the tops\' own topics '
+                        '(--topics-timeout) and measure the CPU share again')
+    p.add_argument('--topics-timeout', type=float, default=900.0)
     p.add_argument('--repeat', type=int, default=1)
     p.add_argument('--node', action='append', default=[],
                    help="LABEL=BIN: a top_sim_node build to run (BIN empty: the package's); repeatable")
