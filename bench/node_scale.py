@@ -8,10 +8,16 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
     (the share over tops x the asked rate: issue 21's figure of merit; and over tops x the top_states received, the
     cost of a tick the node did make when it misses ticks),
   - the latency of a command to the LAST spawned top (its NAME/inclination until its NAME/top_state shows it),
-  - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor.
+  - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor,
+  - start-up: until ~list names every top (startup_s); until the tops' own topics are all advertised (topics_s:
+    they may follow in the background, docs/ros.md "Many tops: start-up"); the time from which no top is behind
+    up to the start of the window (caught_up_s). --settle S waits, before the warm-up, until no top has been
+    behind for S seconds in a row; caught_up_s looks up to the window's start (the command probe of the window takes
+    its top out of the reduced model on purpose). --topics-last measures the window first and waits for the topics
+    after it, then takes the CPU share again (cpu_share_after_topics).
 
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
-                      [--scene FILE]
+                      [--scene FILE] [--settle S] [--topics-last [--topics-timeout S]]
                       [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
@@ -84,15 +90,58 @@ class Latency(object):
 
 
 class Diagnostics(object):
+    """The node's last diagnostics, and the series (arrival time, tops behind, tops whose topics are pending)."""
+
     def __init__(self, rospy):
         from diagnostic_msgs.msg import DiagnosticArray
         self.values = {}
+        self.series = []
+        self.lock = threading.Lock()
         self.sub = rospy.Subscriber('/diagnostics', DiagnosticArray, self.on_diag, queue_size=10)
 
     def on_diag(self, m):
         for st in m.status:
             if 'simulation' in st.name:
-                self.values = {kv.key: kv.value for kv in st.values}
+                values = {kv.key: kv.value for kv in st.values}
+                with self.lock:
+                    self.values = values
+                    # a build without background topics has no pending count: all its topics exist at start
+                    self.series.append((time.perf_counter(), int(values.get('tops falling behind', 0)),
+                                        int(values.get(PENDING, 0))))
+
+    def wait(self, pred, timeout):
+        """The arrival time of the first message (from now) whose (behind, pending) satisfies pred, or None."""
+        start, deadline = len(self.series), time.perf_counter() + timeout
+        while time.perf_counter() < deadline:
+            with self.lock:
+                for t, behind, pending in self.series[start:]:
+                    if pred(behind, pending):
+                        return t
+            time.sleep(0.2)
+        return None
+
+    def settled(self, seconds, timeout):
+        """Waits until no top has been behind for `seconds` (consecutive messages); False after `timeout`."""
+        deadline = time.perf_counter() + timeout
+        while time.perf_counter() < deadline:
+            with self.lock:
+                last_behind = max([t for t, b, _ in self.series if b > 0], default=None)
+                recent = [t for t, b, _ in self.series if last_behind is None or t > last_behind]
+            if recent and recent[-1] - recent[0] >= seconds:
+                return True
+            time.sleep(0.5)
+        return False
+
+    def caught_up(self, t_start, t_end):
+        """The first message after the last one with a top behind, up to t_end (the time no top is behind from)."""
+        with self.lock:
+            seen = [(t, b) for t, b, _ in self.series if t <= t_end]
+        last = max([t for t, b in seen if b > 0], default=None)
+        after = [t for t, b in seen if last is None or t > last]
+        return after[0] - t_start if after else None
+
+
+PENDING = 'tops whose topics are not yet advertised'
 
 
 def set_parameters(env, tops, rate, tf, cpu=None, scene=''):
@@ -171,11 +220,18 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
     try:
         wait_for_all_tops(rospy, tops, timeout=600)
         startup = time.perf_counter() - t_start
+        diag = Diagnostics(rospy)
+        # The tops' own topics may still be advertised in the background (docs/ros.md): the window waits for them
+        # and for every top to keep real time (args.settle s in a row), then measures.
+        topics = None
+        if not args.topics_last:
+            t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.settle_timeout)
+            topics = None if t_topics is None else t_topics - t_start
+        settled = diag.settled(args.settle, timeout=args.settle_timeout)
         states = Arrivals(rospy, NODE + '/top_states')
         tfs = Arrivals(rospy, '/tf')
         last = NODE + '/' + ('t%04d/' % (tops - 1) if tops > 1 else '')
         latency = Latency(rospy, top_sim_msg, last)
-        diag = Diagnostics(rospy)
         subs = [states.sub, tfs.sub, latency.sub, latency.pub, diag.sub]  # unregistered before the next node
         time.sleep(args.warmup)
         t0, c0 = time.perf_counter(), nh.cpu_ticks(pid)
@@ -186,14 +242,32 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             k += 1
             time.sleep(0.5)
         t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
+        caught_up = diag.caught_up(t_start, t0)
         cpu = (c1 - c0) / nh.CLK_TCK / (t1 - t0)
         lat = latency.samples
         states_hz = states.rate(t0, t1)
         d = diag.values
+        after = {}
+        if args.topics_last:  # the tops' own topics may still be on their way: wait, then the CPU share again
+            after['topics_pending_in_window'] = number(d.get(PENDING))
+            t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.topics_timeout)
+            topics = None if t_topics is None else t_topics - t_start
+            if t_topics is not None:
+                time.sleep(args.warmup)
+                t2, c2 = time.perf_counter(), nh.cpu_ticks(pid)
+                time.sleep(args.seconds)
+                t3, c3 = time.perf_counter(), nh.cpu_ticks(pid)
+                after['cpu_share_after_topics'] = round((c3 - c2) / nh.CLK_TCK / (t3 - t2), 4)
+                after['top_states_hz_after_topics'] = round(states.rate(t2, t3), 2)
+                after['tops_behind_after_topics'] = number(diag.values.get('tops falling behind'))
         return {
             'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if pin_cpu is None else ' cpu%d' % pin_cpu),
             'run': index,
             'startup_s': round(startup, 2),
+            'topics_s': None if topics is None else round(topics, 2),
+            # up to the window: its command probe takes the last top out of the reduced model on purpose
+            'caught_up_s': None if caught_up is None else round(caught_up, 2),
+            'settled': settled,
             'top_states_hz': round(states.rate(t0, t1), 2), 'tf_msgs_hz': round(tfs.rate(t0, t1), 2),
             'cpu_share': round(cpu, 4), 'cpu_us_per_top_per_s': round(1e6 * cpu / tops, 1),
             'cpu_us_per_top_per_tick': round(1e6 * cpu / (tops * rate), 2),
@@ -204,6 +278,7 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             'tops_behind': d.get('tops falling behind'), 'achieved_rtf': d.get('achieved real-time factor'),
             'publish_rate_achieved': d.get('publish rate achieved [Hz]'),
             'load_before': round(load0, 2), 'load_after': round(nh.loadavg_1min(), 2),
+            **after,
         }
     finally:
         for sub in subs:
@@ -232,6 +307,13 @@ def parse_args():
     p.add_argument('--seconds', type=float, default=20.0)
     p.add_argument('--scene', default='', help='scene file of every top (default: config/scenes/default.yaml)')
     p.add_argument('--warmup', type=float, default=5.0)
+    p.add_argument('--settle', type=float, default=0.0,
+                   help='before the window, wait until no top has been behind for this many seconds (diagnostics)')
+    p.add_argument('--settle-timeout', type=float, default=900.0)
+    p.add_argument('--topics-last', action='store_true',
+                   help='measure the window once no top is behind, then wait for the tops\' own topics '
+                        '(--topics-timeout) and measure the CPU share again')
+    p.add_argument('--topics-timeout', type=float, default=900.0)
     p.add_argument('--repeat', type=int, default=1)
     p.add_argument('--node', action='append', default=[],
                    help="LABEL=BIN: a top_sim_node build to run (BIN empty: the package's); repeatable")
@@ -303,13 +385,14 @@ def medians(results):
 def markdown(results):
     """The table of docs/node_benchmark.md (medians over the runs; tops behind: the runs' range)."""
     rows = ['| node | tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
-            '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | load '
-            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|---|']
+            '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | topics [s] | none behind from [s] | load '
+            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|']
     for r in results:
         ms = ['-' if r[k] is None else '%.1f' % r[k] for k in ('latency_p50_ms', 'latency_max_ms')]
-        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %.1f-%.1f | %d |' % (
+        opt = ['-' if r.get(k) is None else '%.1f' % r[k] for k in ('topics_s', 'caught_up_s')]
+        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %s | %s | %.1f-%.1f | %d |' % (
             r['node'], r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
-            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], r['load_before'], r['load_after'], r['runs']))
+            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], opt[0], opt[1], r['load_before'], r['load_after'], r['runs']))
     return '\n'.join(rows)
 
 

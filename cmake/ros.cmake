@@ -21,7 +21,7 @@ catkin_package(
 add_library(top_sim_ros src/ros/conversions.cpp src/ros/param_yaml.cpp src/ros/node_parameters.cpp
   src/ros/top_input.cpp src/ros/node_top.cpp src/ros/top_set.cpp src/ros/state_output.cpp
   src/ros/node_diagnostics.cpp src/ros/node_reconfigure.cpp src/ros/top_mesh.cpp src/ros/markers.cpp
-  src/ros/trail.cpp src/ros/marker_stream.cpp src/ros/cpu_affinity.cpp)
+  src/ros/trail.cpp src/ros/marker_stream.cpp src/ros/cpu_affinity.cpp src/ros/topic_opener.cpp)
 target_include_directories(top_sim_ros PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/ros ${catkin_INCLUDE_DIRS})
 target_link_libraries(top_sim_ros PUBLIC top_sim_core ${catkin_LIBRARIES} yaml-cpp)
 add_dependencies(top_sim_ros ${PROJECT_NAME}_generate_messages_cpp ${PROJECT_NAME}_gencfg)
@@ -102,6 +102,7 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/scene_names.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  add_rostest(test/ros/background_topics.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
   add_rostest(test/ros/bandwidth.test DEPENDENCIES top_sim_node)
   add_rostest(test/ros/interactive.test DEPENDENCIES top_sim_node top_sim_interactive ${PROJECT_NAME}_generate_messages_py)

@@ -71,6 +71,7 @@ void NodeDiagnostics::fill(diagnostic_updater::DiagnosticStatusWrapper& st, TopS
     st.summary(DiagnosticStatus::OK, node.paused ? "paused" : "running");
   st.add("tops", tops.size());
   st.add("tops falling behind", c.behind);
+  st.add("tops whose topics are not yet advertised", node.topics_pending);
   st.add("tops stopped by a contact fault", c.faulted);
   st.add("simulated time [s]", s.t);
   st.add("requested real-time factor", node.requested_factor);

@@ -19,6 +19,7 @@ struct NodeStatus {
   std::size_t published = 0;  // periods published since start
   std::size_t rejected = 0;   // commands rejected since start
   std::string lcm;            // "off", "on: ...", "error: ..."
+  std::size_t topics_pending = 0;  // tops whose own topics are still being advertised (topic_opener.hpp)
 };
 
 class NodeDiagnostics {

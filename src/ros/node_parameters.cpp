@@ -149,6 +149,9 @@ NodeParameters read_node_parameters(ParamReader& p) {
   n.lcm_channel = p.text("lcm_channel", n.lcm_channel);
   n.config_dir = p.text("config_dir", n.config_dir);
   n.cpu_affinity = read_cpu_affinity(p);
+  n.topics_at_start = p.integer("topics_at_start", n.topics_at_start);
+  require(n.topics_at_start >= -1, p.where("topics_at_start"), n.topics_at_start,
+          ">= 0 tops, or -1 = all (the launch-time top's are always there)");
   return n;
 }
 

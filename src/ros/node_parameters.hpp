@@ -65,6 +65,9 @@ struct NodeParameters {
   std::string lcm_url, lcm_channel = "TOP_STATE";
   std::string config_dir;           // where scenes find tops/ and planes/
   int cpu_affinity = -1;            // the CPU all the node's threads run on; -1 = not pinned (cpu_affinity.hpp)
+  // Tops (the launch-time top counted) whose own topics exist before the loop starts; the others' are opened on a
+  // background thread (topic_opener.hpp); -1 = all before the loop.
+  int topics_at_start = 100;
 };
 
 constexpr double kMaxPublishRate = 10000.0;

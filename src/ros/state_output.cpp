@@ -44,14 +44,17 @@ ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t 
 
 }  // namespace
 
-// The callbacks run in spinOnce() on the loop's thread.
-void StateOutput::open(NodeTop& top, ros::NodeHandle& pnh) {
-  TopOutput& out = top.output;
-  out.state = counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
-                                        subscription_changes_);
-  out.path = counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_);
-  out.markers.follow_speed(0.0, params_.grid_pitch);  // the grid frame's pitch before the first marker tick
+void StateOutput::open(NodeTop& top) {
+  top.output.markers.follow_speed(0.0, params_.grid_pitch);  // the grid frame's pitch before the first marker tick
   ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
+}
+
+// The callbacks run in spinOnce() on the loop's thread, whichever thread advertised.
+std::pair<ros::Publisher, ros::Publisher> StateOutput::advertise(const NodeTop& top, ros::NodeHandle& pnh) const {
+  const TopOutput& out = top.output;
+  return {counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
+                                     subscription_changes_),
+          counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_)};
 }
 
 void StateOutput::refresh_readers(TopSet& tops) {
@@ -118,7 +121,8 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
 // A top's trail and frames come from its pose; the full snapshot (the sample's analysis) only when a TopState of it
 // is read, or for the launch-time top (LCM, diagnostics): thousands of tops seen through tf alone cost no sample.
 void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
-  const bool subscribed = top.output.state_readers > 0;
+  // A subscriber may connect before a background-advertised publisher is installed (topic_opener.hpp).
+  const bool subscribed = top.output.state_readers > 0 && top.output.state;
   const bool full = flags.array || subscribed || top.launch_top();
   top_sim::Snapshot s;
   if (full) s = top.sim().snapshot();
@@ -285,7 +289,7 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
   if (wall - last_path_wall_ < 1.0 / params_.path_rate) return;
   for (auto& t : tops) {
     TopOutput& out = t->output;
-    if (out.path_readers <= 0) continue;
+    if (out.path_readers <= 0 || !out.path) continue;
     out.trail.trim(params_.trail_seconds);
     out.trail.to_path(t->frames().plane, path_);
     path_.header.stamp = stamp(*t);

@@ -31,7 +31,10 @@ class StateOutput {
   // Advertises the node-wide topics under `pnh` (markers, top_states; /clock when asked) and opens LCM.
   StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParameters& params, double stamp_origin);
 
-  void open(NodeTop& top, ros::NodeHandle& pnh);  // advertises the top's top_state and path
+  // A new top: its marker state, and its counters refreshed before its first publication (loop's thread).
+  void open(NodeTop& top);
+  // Advertises the top's top_state and path (any thread: reads only the top's name and its counters' pointers).
+  std::pair<ros::Publisher, ros::Publisher> advertise(const NodeTop& top, ros::NodeHandle& pnh) const;
   void close(NodeTop& top);                       // deletes its markers in rviz
   void clear_trail(NodeTop& top) { top.output.trail.clear(); }
   const std::string& followed() const { return follow_; }

@@ -7,8 +7,10 @@
 
 #include <malloc.h>
 
+#include <algorithm>
 #include <memory>
 #include <sstream>
+#include <tuple>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <std_srvs/SetBool.h>
@@ -24,6 +26,7 @@
 #include "state_output.hpp"
 #include "top_input.hpp"
 #include "top_set.hpp"
+#include "topic_opener.hpp"
 #include "top_sim/Kill.h"
 #include "top_sim/ListTops.h"
 #include "top_sim/Spawn.h"
@@ -47,17 +50,22 @@ class TopSimNode {
     double origin = ros::Time::now().toSec();
     if (origin <= 0.0) origin = ros::WallTime::now().toSec();
     output_ = std::make_unique<top_sim_ros::StateOutput>(nh_, pnh_, params_, origin);
+    opener_ = std::make_unique<top_sim_ros::TopicOpener>([this](NodeTop& t) { return open_topics(t); });
     const double wall = ros::WallTime::now().toSec();
+    start_wall_ = wall;
     NodeTop& top = tops_.add(std::make_unique<NodeTop>(kLaunchTopName, true, scene_, params_.frames, 0.0,
                                                        params_.real_time_factor, params_.publish_rate, wall));
-    connect(top);
+    connect(top, false);
     if (!start_command_.empty()) {
       top.sim().submit(start_command_);  // validated in read_start()
       ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s applied at t = 0 (and again by ~reset)",
                pnh_.getNamespace().c_str());
     }
     for (auto& [name, scene] : start_tops) {
-      const std::string error = spawn(name, scene);
+      // Beyond `topics_at_start` tops, a top's own topics follow on the background thread (docs/ros.md).
+      const bool background = params_.topics_at_start >= 0 &&
+                              tops_.size() >= static_cast<std::size_t>(std::max(params_.topics_at_start, 1));
+      const std::string error = spawn(name, scene, background);
       if (!error.empty()) {
         ROS_FATAL("top_sim_node: %s/tops/%s: %s", pnh_.getNamespace().c_str(), name.c_str(), error.c_str());
         return false;
@@ -72,6 +80,11 @@ class TopSimNode {
              "factor %.4g", scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
              top_sim::to_string(scene_.integrator.method), tops_.size(), params_.publish_rate,
              params_.real_time_factor);
+    topics_pending_ = opener_->pending();
+    if (topics_pending_ > 0)
+      ROS_INFO("top_sim_node: the own topics of %zu of the %zu tops are being advertised in the background "
+               "(~topics_at_start = %d); ~top_states, ~list and the services serve every top now",
+               topics_pending_, tops_.size(), params_.topics_at_start);
     return true;
   }
 
@@ -126,19 +139,35 @@ class TopSimNode {
     return true;
   }
 
-  // A top's topics; the launch-time top's accepted commands are shown in dynamic_reconfigure.
-  void connect(NodeTop& top) {
-    output_->open(top, pnh_);
+  // A top's topics, now or (`background`) on the opener's thread; installed into the top on the loop's thread.
+  void connect(NodeTop& top, bool background) {
+    output_->open(top);
+    if (background) {
+      opener_->add(top);
+      return;
+    }
+    top_sim_ros::TopTopics t = open_topics(top);
+    top.output.state = std::move(t.state);
+    top.output.path = std::move(t.path);
+    top.input = std::move(t.input);
+  }
+
+  // The roscpp calls for one top's own topics (thread-safe: the node handle and the top's constant parts); the
+  // launch-time top's accepted commands are shown in dynamic_reconfigure.
+  top_sim_ros::TopTopics open_topics(NodeTop& top) {
+    top_sim_ros::TopTopics t;
+    std::tie(t.state, t.path) = output_->advertise(top, pnh_);
     top_sim::Simulator& sim = top.sim();
     const bool shown = top.launch_top();
-    top.input = std::make_unique<top_sim_ros::TopInput>(
+    t.input = std::make_unique<top_sim_ros::TopInput>(
         pnh_, top.prefix(), top.name(),
-        [this, &sim, shown](const top_sim::Command& c) {
+        [this, &sim, shown](const top_sim::Command& c) {  // runs in spinOnce() on the loop's thread
           const std::string error = sim.submit(c);
           if (error.empty() && shown && reconfigure_) reconfigure_->show(c);
           return error;
         },
         [&sim] { return sim.model().friction; }, rejections_);
+    return t;
   }
 
   void advertise_services() {
@@ -177,6 +206,7 @@ class TopSimNode {
   // ---- one period ---------------------------------------------------------------------------------------------
   void tick() {
     const double wall = ros::WallTime::now().toSec();
+    install_topics(wall);
     const double cpu0 = top_sim_ros::thread_cpu_seconds();
     std::size_t steps = 0;
     tops_.advance(wall, tops_.launch_top().pacer().budget(), paused_, [&](top_sim_ros::NodeTop& t) {
@@ -189,6 +219,16 @@ class TopSimNode {
     updater_.update();
   }
 
+  // Tops whose topics the opener has finished get them before this tick publishes.
+  void install_topics(double wall) {
+    if (topics_pending_ == 0) return;
+    opener_->install();
+    topics_pending_ = opener_->pending();
+    if (topics_pending_ == 0)
+      ROS_INFO("top_sim_node: the own topics of all %zu tops are advertised, %.1f s after the node started",
+               tops_.size(), wall - start_wall_);
+  }
+
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& st) {
     top_sim_ros::NodeStatus node;
     node.paused = paused_;
@@ -197,6 +237,7 @@ class TopSimNode {
     node.published = output_->published();
     node.rejected = rejections_.total();
     node.lcm = output_->lcm_status();
+    node.topics_pending = topics_pending_;
     diagnostics_->fill(st, tops_, node, ros::WallTime::now().toSec());
   }
 
@@ -204,7 +245,7 @@ class TopSimNode {
   static std::string tops_count(std::size_t n) { return std::to_string(n) + (n == 1 ? " top" : " tops"); }
 
   // "" or why not: a new top `name` on `scene`, starting at the node's current simulated time.
-  std::string spawn(const std::string& name, const top_sim::Scene& scene) {
+  std::string spawn(const std::string& name, const top_sim::Scene& scene, bool background = false) {
     const std::string bad = tops_.check_new_name(name);
     if (!bad.empty()) return bad;
     NodeTop& launch = tops_.launch_top();
@@ -212,7 +253,7 @@ class TopSimNode {
     auto top = std::make_unique<NodeTop>(name, false, scene, top_sim_ros::spawned_frames(params_.frames, name),
                                          node_time, params_.real_time_factor, params_.publish_rate,
                                          ros::WallTime::now().toSec());
-    connect(tops_.add(std::move(top)));
+    connect(tops_.add(std::move(top)), background);
     for (const auto& w : scene.warnings) ROS_WARN("top_sim_node: top %s: %s", name.c_str(), w.c_str());
     return "";
   }
@@ -241,6 +282,8 @@ class TopSimNode {
       res.message = std::string("'") + kLaunchTopName + "' is the launch-time top (it carries ~top_state, the plane "
                     "and dynamic_reconfigure): it cannot be killed; kill the spawned tops, or ~pause the node";
     } else if (std::unique_ptr<NodeTop> top = tops_.remove(req.name)) {
+      opener_->forget(*top);  // its topics may still be on their way
+      topics_pending_ = opener_->pending();
       output_->close(*top);
       res.success = true;
       res.message = "killed top '" + req.name + "' (" + tops_count(tops_.size()) + " left)";
@@ -304,6 +347,10 @@ class TopSimNode {
   diagnostic_updater::Updater updater_;
   ros::ServiceServer reset_srv_, pause_srv_, spawn_srv_, kill_srv_, list_srv_;
   bool paused_ = false;
+  double start_wall_ = 0.0;
+  std::size_t topics_pending_ = 0;  // tops whose own topics the opener has not handed over yet
+  // Last, so destroyed first: its thread stops before the tops and handles it uses go.
+  std::unique_ptr<top_sim_ros::TopicOpener> opener_;
 };
 
 // ~cpu_affinity, applied before roscpp starts its threads (at the first NodeHandle) so that they all inherit it;

@@ -1,5 +1,6 @@
 // Unit tests of the node's parts that need no master: the parameter reader (scene sources, strict types, unknown
-// keys), the top set (names, the sharing of a tick's budget), the contact-point trail and ~cpu_affinity.
+// keys), the top set (names, the sharing of a tick's budget), the contact-point trail, ~cpu_affinity and the
+// background opener of the tops' topics (without roscpp: its build step is the test's).
 #include <gtest/gtest.h>
 
 #include <sched.h>
@@ -8,6 +9,8 @@
 #include <unistd.h>
 
 #include <atomic>
+#include <condition_variable>
+#include <mutex>
 #include <chrono>
 #include <cstdint>
 #include <fstream>
@@ -19,6 +22,7 @@
 #include "cpu_affinity.hpp"
 #include "node_parameters.hpp"
 #include "top_set.hpp"
+#include "topic_opener.hpp"
 #include "marker_stream.hpp"
 #include "trail.hpp"
 #include "top_sim/scene.hpp"
@@ -493,3 +497,96 @@ TEST(CpuAffinity, OtherThreadsYieldToTheCaller) {
 }
 
 }  // namespace
+
+namespace {
+
+// A gate the opener's build step waits at, so the test decides which top is in hand and when it is done.
+struct Gate {
+  std::mutex m;
+  std::condition_variable cv;
+  std::vector<std::string> entered, finished;
+  std::string open_for;  // the top whose build may return
+
+  void enter_and_wait(const std::string& name) {
+    std::unique_lock<std::mutex> lock(m);
+    entered.push_back(name);
+    cv.notify_all();
+    cv.wait(lock, [&] { return open_for == name; });
+    finished.push_back(name);
+  }
+  void wait_entered(std::size_t n) {
+    std::unique_lock<std::mutex> lock(m);
+    cv.wait(lock, [&] { return entered.size() >= n; });
+  }
+  void open(const std::string& name) {
+    std::lock_guard<std::mutex> lock(m);
+    open_for = name;
+    cv.notify_all();
+  }
+};
+
+}  // namespace
+
+// Tops are opened in the order added; one forgotten while queued is never built, one forgotten while in hand is
+// waited for; finished tops are handed over only by install(), on the caller's thread; pending() counts all three.
+TEST(TopicOpener, OpensInOrderForgetsQueuedWaitsForTheTopInHand) {
+  std::vector<std::unique_ptr<top_sim_ros::NodeTop>> tops;
+  for (const char* name : {"a", "b", "c", "d"})
+    tops.push_back(std::make_unique<top_sim_ros::NodeTop>(name, false, default_scene(), top_sim_ros::Frames{}, 0.0,
+                                                          1.0, 200.0, 0.0));
+  Gate gate;
+  top_sim_ros::TopicOpener opener([&](top_sim_ros::NodeTop& t) {
+    gate.enter_and_wait(t.name());
+    return top_sim_ros::TopTopics{};
+  });
+  for (auto& t : tops) opener.add(*t);
+  gate.wait_entered(1);  // a in hand, b c d queued
+  EXPECT_EQ(opener.pending(), 4u);
+  opener.forget(*tops[1]);  // b: out of the queue at once
+  EXPECT_EQ(opener.pending(), 3u);
+  gate.open("a");
+  gate.wait_entered(2);  // a done (not installed), c in hand
+  EXPECT_EQ(opener.pending(), 3u);
+  EXPECT_EQ(opener.install(), 1u);
+  EXPECT_EQ(opener.pending(), 2u);
+  std::atomic<bool> forgotten{false};
+  std::thread killer([&] {
+    opener.forget(*tops[2]);  // c is in hand: returns only after its build returned
+    forgotten = true;
+  });
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_FALSE(forgotten) << "forget() returned while the top was still being built";
+  gate.open("c");
+  killer.join();
+  {
+    std::lock_guard<std::mutex> lock(gate.m);
+    EXPECT_EQ(gate.finished, (std::vector<std::string>{"a", "c"}));
+  }
+  gate.wait_entered(3);  // d in hand
+  gate.open("d");
+  while (opener.pending() > 0) {
+    opener.install();
+    std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  }
+  std::lock_guard<std::mutex> lock(gate.m);
+  EXPECT_EQ(gate.entered, (std::vector<std::string>{"a", "c", "d"}));  // b never built
+}
+
+// ~topics_at_start: 100 by default, -1 (all) and any count >= 0; below -1 a ParameterError naming it.
+TEST(NodeParameters, TopicsAtStartIsACountOrMinusOne) {
+  auto read = [](int v) {
+    XmlRpc::XmlRpcValue tree;
+    tree["topics_at_start"] = v;
+    ParamReader p(tree, "/top_sim");
+    return top_sim_ros::read_node_parameters(p).topics_at_start;
+  };
+  XmlRpc::XmlRpcValue none;
+  none["publish_rate"] = 100;
+  ParamReader p(none, "/top_sim");
+  EXPECT_EQ(top_sim_ros::read_node_parameters(p).topics_at_start, 100);
+  EXPECT_EQ(read(-1), -1);
+  EXPECT_EQ(read(0), 0);
+  EXPECT_EQ(read(20000), 20000);
+  const std::string m = message_of([&] { read(-2); });
+  EXPECT_NE(m.find("/top_sim/topics_at_start = -2"), std::string::npos) << m;
+}
