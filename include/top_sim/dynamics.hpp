@@ -76,4 +76,13 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
 void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                       ContactForceRecord* record = nullptr);
 
+// The contact's model, point_contact(model) decided once: a caller that integrates many steps of one model (the
+// Simulator, at each restart) passes it, and the point contact's right-hand side then runs without the test.
+enum class ContactModel : unsigned char { point, finite };
+inline ContactModel contact_model(const Model& model) {
+  return point_contact(model) ? ContactModel::point : ContactModel::finite;
+}
+void model_derivative(const Model& model, ContactModel contact, ContactMode mode, const StateVector& y,
+                      StateVector& dydt, ContactForceRecord* record = nullptr);
+
 }  // namespace top_sim

@@ -150,6 +150,7 @@ class Simulator {
   ContactFault fault_ = ContactFault::none;
   ContactMode mode_ = ContactMode::slipping;
   bool closed_flight_ = false;  // stepper_ is the closed-form flight
+  ContactModel contact_model_ = ContactModel::point;  // contact_model(model_), set at each restart
   bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
   // The slip-onset layer of the current model (set at each restart): its half width in |v_t| and whether mu(0) > 0.
   bool layer_kink_at_rest_ = false;

@@ -161,12 +161,12 @@ void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b
   out.dissipation = -out.couple.dot(b.w);
 }
 
-// One mode's motion; a template so that the hot slipping path compiles without the other modes' code.
-template <ContactMode kMode>
+// One mode's motion; a template so that the hot slipping path compiles without the other modes' code, and the
+// point contact without the finite contact's (kFinite: physics.md section 12).
+template <ContactMode kMode, bool kFinite>
 void motion(const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
   detail::RigidBody b(model, y);
-  const bool finite = !point_contact(model);
-  if (finite) {  // a reused Dynamics (the sample's) must not keep the last mode's patch
+  if constexpr (kFinite) {  // a reused Dynamics (the sample's) must not keep the last mode's patch
     out.patch_radius = out.drilling_torque = 0.0;
     out.couple.setZero();
     add_air(model, b, out);
@@ -174,13 +174,13 @@ void motion(const Model& model, const StateVector& y, Dynamics& out, double& pai
   out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
   painleve = ModeMargins::kNone;
   if constexpr (kMode == ContactMode::slipping) {
-    if (finite)
+    if constexpr (kFinite)
       slipping_force_finite(model, b, out, painleve);
     else
       slipping_force(model, b, out, painleve);
   } else {
     if constexpr (kMode == ContactMode::rolling) {
-      if (finite)
+      if constexpr (kFinite)
         rolling_contact_force_finite(model, b, out);
       else
         rolling_contact_force(b, out);
@@ -190,7 +190,7 @@ void motion(const Model& model, const StateVector& y, Dynamics& out, double& pai
       out.contact_force.setZero();
       out.dissipation = 0.0;
     }
-    if (finite)
+    if constexpr (kFinite)
       out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force) + out.couple) - b.Ii_G;
     else
       out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.Ii_G;
@@ -200,9 +200,11 @@ void motion(const Model& model, const StateVector& y, Dynamics& out, double& pai
   if constexpr (kMode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
-  if (finite && model.air.active()) {
-    const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
-    out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
+  if constexpr (kFinite) {
+    if (model.air.active()) {
+      const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
+      out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
+    }
   }
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
@@ -217,12 +219,22 @@ double cos_max_tilt(const Model& model) {
   return cosine;
 }
 
-void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double& painleve) {
+template <bool kFinite>
+[[gnu::always_inline]] inline void evaluate_motion_in(ContactMode mode, const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
   switch (mode) {
-    case ContactMode::slipping: motion<ContactMode::slipping>(model, y, out, painleve); break;
-    case ContactMode::rolling: motion<ContactMode::rolling>(model, y, out, painleve); break;
-    case ContactMode::flight: motion<ContactMode::flight>(model, y, out, painleve); break;
+    case ContactMode::slipping: motion<ContactMode::slipping, kFinite>(model, y, out, painleve); break;
+    case ContactMode::rolling: motion<ContactMode::rolling, kFinite>(model, y, out, painleve); break;
+    case ContactMode::flight: motion<ContactMode::flight, kFinite>(model, y, out, painleve); break;
   }
+}
+
+// Inlined into its callers, as the one switch it replaces was (a call here costs 26 instructions per right-hand side).
+[[gnu::always_inline]] inline void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y,
+                                                   Dynamics& out, double& painleve) {
+  if (point_contact(model))
+    evaluate_motion_in<false>(mode, model, y, out, painleve);
+  else
+    evaluate_motion_in<true>(mode, model, y, out, painleve);
 }
 
 }  // namespace
@@ -277,11 +289,14 @@ double jellett(const Model& model, const StateVector& y) {
   return angular_momentum(model, y).dot(arm);
 }
 
-void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
-                ContactForceRecord* record) {
+namespace {
+
+template <bool kFinite>
+void derivative_in(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                   ContactForceRecord* record) {
   Dynamics dyn;
   double painleve;
-  evaluate_motion(model, mode, y, dyn, painleve);
+  evaluate_motion_in<kFinite>(mode, model, y, dyn, painleve);
   if (record) {
     record->force = dyn.contact_force;
     record->drilling_torque = dyn.drilling_torque;
@@ -302,6 +317,16 @@ void derivative(const Model& model, ContactMode mode, const StateVector& y, Stat
   dydt[idx::gap] = mode == ContactMode::flight ? y[idx::gap_rate] : 0.0;
   dydt[idx::gap_rate] = mode == ContactMode::flight ? dyn.a_m.z() : 0.0;
   dydt[idx::psi] = dyn.psi_dot;
+}
+
+}  // namespace
+
+void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                ContactForceRecord* record) {
+  if (point_contact(model))
+    derivative_in<false>(model, mode, y, dydt, record);
+  else
+    derivative_in<true>(model, mode, y, dydt, record);
 }
 
 void jacobian_difference_steps(const Model& model, ContactMode mode, const StateVector& y, StateVector& max_step) {
@@ -343,10 +368,17 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
 
 void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                       ContactForceRecord* record) {
+  model_derivative(model, contact_model(model), mode, y, dydt, record);
+}
+
+void model_derivative(const Model& model, ContactModel contact, ContactMode mode, const StateVector& y,
+                      StateVector& dydt, ContactForceRecord* record) {
   if (model.kind == ModelKind::adiabatic)
     adiabatic_derivative(model, y, dydt);
+  else if (contact == ContactModel::point)
+    derivative_in<false>(model, mode, y, dydt, record);
   else
-    derivative(model, mode, y, dydt, record);
+    derivative_in<true>(model, mode, y, dydt, record);
 }
 
 }  // namespace top_sim

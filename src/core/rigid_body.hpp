@@ -50,7 +50,7 @@ struct RigidBody {
   Eigen::Vector3d inverse_inertia(const Eigen::Vector3d& v) const { return inverse_inertia_times(inv_d, inv_f, f_hat, v); }
 
   // Section 9: K = (1/m) 1 + [rho]x^T I'^-1 [rho]x.
-  Eigen::Matrix3d response_matrix() const {
+  [[gnu::always_inline]] Eigen::Matrix3d response_matrix() const {  // inline: the rolling right-hand side's hot path
     Eigen::Matrix3d Rx;
     Rx << 0.0, -rho.z(), rho.y(), rho.z(), 0.0, -rho.x(), -rho.y(), rho.x(), 0.0;
     const Eigen::Matrix3d Ii = inv_d * Eigen::Matrix3d::Identity() + (inv_f - inv_d) * f_hat * f_hat.transpose();

@@ -118,7 +118,9 @@ Simulator::Simulator(const Scene& scene)
     : max_energy_residual_(scene.integrator.max_energy_residual), model_(scene.model), scene_(scene) {
   stepper_ = make_stepper(
       scene_.integrator,
-      [this](const StateVector& y, StateVector& dydt) { model_derivative(model_, mode_, y, dydt, &record_); },
+      [this](const StateVector& y, StateVector& dydt) {
+        model_derivative(model_, contact_model_, mode_, y, dydt, &record_);
+      },
       [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
       [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); },
       [this](const StateVector& y) { return angular_momentum_azimuth(model_, y); });
@@ -180,6 +182,7 @@ void Simulator::restart_stepper(bool rebase_energy) {
   if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y_);
   if (rebase_energy) balance_.rebase(model_, y_);
   cos_max_tilt_ = std::cos(model_.top.max_tilt);
+  contact_model_ = contact_model(model_);
   layer_width_ = kLayerWidth * std::max(model_.contact.stick_speed, model_.regularization_speed);
   layer_kink_at_rest_ = raw_friction_coefficient(model_.friction, 0.0) > 0.0;
   select_stepper();
