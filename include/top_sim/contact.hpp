@@ -24,6 +24,14 @@ inline Eigen::Vector3d contact_velocity(const Model& model, const Eigen::Vector3
   return u - model.top.tip_radius * Eigen::Vector3d(omega.y(), -omega.x(), 0.0);
 }
 
+// v_t and the rolling speed only: on a patch the slip and the friction direction come from the law (section 12).
+inline ContactKinematics contact_velocities(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
+  ContactKinematics k;
+  k.v_t = contact_velocity(model, u, omega);
+  k.rolling_speed = model.top.tip_radius * Eigen::Vector3d(omega.y(), -omega.x(), 0.0).norm();  // R |omega x n|
+  return k;
+}
+
 inline ContactKinematics contact_kinematics(const Model& model, const Eigen::Vector3d& u, const Eigen::Vector3d& omega) {
   ContactKinematics k;
   const double R = model.top.tip_radius;

@@ -10,12 +10,12 @@
 
 namespace top_sim {
 
-// Everything one right-hand-side evaluation derives from the state.
-struct Dynamics {
+// What a point contact's right-hand side derives from the state (a right-hand side of the point contact fills only
+// this: the finite contact's fields below would cost it a zeroing per evaluation).
+struct PointContactDynamics {
   ContactKinematics contact;       // from the in-plane velocities (in flight: what touchdown would see)
   double mu = 0.0;                 // slipping: mu(s), clamped; rolling: the mobilised |F_t| / F_n; flight: 0
   double normal_force = 0.0;       // N = F_n (0 in flight)
-  ModeMargins margins;             // filled by evaluate_dynamics only
   Eigen::Vector3d contact_force = Eigen::Vector3d::Zero();   // F at the contact point
   Eigen::Vector3d friction_force = Eigen::Vector3d::Zero();  // its in-plane part
   Eigen::Vector3d omega_dot = Eigen::Vector3d::Zero();
@@ -24,6 +24,11 @@ struct Dynamics {
   double nu_dot = 0.0;
   double dissipation = 0.0;        // W_diss' = mu N t_hat . v_t + c nu^2 (friction does no work while rolling)
   double psi_dot = 0.0;
+};
+
+// Everything one evaluation derives from the state: the motion, the mode's margins and the finite contact's terms.
+struct Dynamics : PointContactDynamics {
+  ModeMargins margins;             // filled by evaluate_dynamics only
   // Finite contact (physics.md section 12); all 0 for a point contact.
   double patch_radius = 0.0;       // a [m]
   double drilling_torque = 0.0;    // n . M_n [N m]

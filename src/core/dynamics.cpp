@@ -4,7 +4,9 @@
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
+#include <type_traits>
 
+#include "exact_law_table.hpp"
 #include "rigid_body.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/angular_momentum.hpp"
@@ -14,22 +16,28 @@ namespace top_sim {
 
 namespace {
 
+// Section 4: N (1/m - f A) = -n.g + f (C - B) with A = (I'^-1 T x f_hat) . n, T the contact's torque per newton
+// (rho x d on a point); equal to n.b / (n.K d) of section 9. Sets the Painleve margin m (1/m - f A).
+[[gnu::always_inline]] inline double constrained_normal_force(const detail::RigidBody& b, const Eigen::Vector3d& Ii_T,
+                                                              double& painleve) {
+  const double A = Ii_T.cross(b.f_hat).z();
+  const double B = b.Ii_G.cross(b.f_hat).z();
+  const double denominator = 1.0 / b.m - b.f * A;
+  painleve = b.m * denominator;
+  // Past the Painleve boundary N is meaningless; keep it finite so the fault can be located.
+  const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
+  return (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
+}
+
 // Slipping (sections 3-4): F = N d, d = n - mu t_hat, N the multiplier keeping n . a_m = 0. Sets omega_dot too
 // (N I'^-1 (rho x d) - I'^-1 G), reusing I'^-1 (rho x d) from the multiplier.
-void slipping_force(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
+void slipping_force(const Model& model, const detail::RigidBody& b, PointContactDynamics& out, double& painleve) {
   out.mu = friction_coefficient(model.friction, out.contact.slip);
   const Eigen::Vector3d d(-out.mu * out.contact.t_hat.x(), -out.mu * out.contact.t_hat.y(), 1.0);
   const Eigen::Vector3d Ii_rxd = b.inverse_inertia(b.rho.cross(d));
   double N;
   if (model.normal_force == NormalForceModel::constrained) {
-    // Section 4: N (1/m - f A) = -n.g + f (C - B); equal to n.b / (n.K d) of section 9.
-    const double A = Ii_rxd.cross(b.f_hat).z();
-    const double B = b.Ii_G.cross(b.f_hat).z();
-    const double denominator = 1.0 / b.m - b.f * A;
-    painleve = b.m * denominator;
-    // Past the Painleve boundary N is meaningless; keep it finite so the fault can be located.
-    const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
-    N = (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
+    N = constrained_normal_force(b, Ii_rxd, painleve);
   } else {
     N = -b.m * b.g.z();  // static approximation: N = m g cos(alpha)
     painleve = ModeMargins::kNone;
@@ -41,7 +49,7 @@ void slipping_force(const Model& model, const detail::RigidBody& b, Dynamics& ou
 }
 
 // Rolling (section 9): F = K^-1 b keeps v_c constant; no work is done at the contact.
-void rolling_contact_force(const detail::RigidBody& b, Dynamics& out) {
+void rolling_contact_force(const detail::RigidBody& b, PointContactDynamics& out) {
   out.contact_force = b.response_matrix().llt().solve(b.response_bias());
   out.normal_force = out.contact_force.z();
   const double Ft = std::hypot(out.contact_force.x(), out.contact_force.y());
@@ -54,7 +62,6 @@ void rolling_contact_force(const detail::RigidBody& b, Dynamics& out) {
 // Air acts on the body, not at the contact: its force joins gravity and its torque the torque-free part G, so
 // every mode's constraint solve sees it unchanged.
 void add_air(const Model& model, detail::RigidBody& b, Dynamics& out) {
-  if (!model.air.active()) return;
   const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
   out.air_force = -model.air.drag * v_cm;
   out.air_torque = -model.air.spin_drag * b.w;
@@ -70,54 +77,78 @@ Eigen::Vector3d rolling_resistance_per_newton(const Model& model, const detail::
   return -delta / std::sqrt(w_r.squaredNorm() + kRollingRateEps * kRollingRateEps) * w_r;
 }
 
-// Slipping on a finite contact: F = N d, couple = N tau with the coupled law of section 12; N keeps n . a_m = 0
-// as in slipping_force, with rho x d + tau in place of rho x d. A Hertz patch depends on N: a second pass takes
-// a from the first pass's N (the first from N = m g cos(alpha)).
+// The coupled law of section 12 per newton of normal force at lever Rbar: F / N = -force_per_speed v_t and
+// M_n / N = drilling, with s the generalised slip. Inline: a Hertz patch evaluates it twice per right-hand side.
+struct PatchLaw {
+  double slip, mu, force_per_speed, drilling, force_factor_per_speed;
+};
+[[gnu::always_inline]] inline PatchLaw patch_law(const Model& model, double lever, double slip_speed, double omega_n,
+                                                 double speed_sum) {
+  const double v_eps = model.regularization_speed;
+  const double wy = lever * omega_n, pivot = std::abs(wy), w2 = slip_speed * slip_speed + wy * wy;
+  const double inverse_w = 1.0 / std::sqrt(w2 + v_eps * v_eps);
+  PatchLaw law;
+  law.slip = std::sqrt(w2) / (speed_sum + pivot);
+  law.mu = friction_coefficient(model.friction, law.slip);
+  const FiniteContact& fc = model.finite_contact;
+  const DrillingFactors k = fc.law == DrillingLaw::exact
+                                ? exact_law::factors(exact_law::table(fc.pressure), slip_speed, pivot)
+                                : DrillingFactors{};
+  law.force_factor_per_speed = k.force * inverse_w;
+  law.force_per_speed = law.mu * law.force_factor_per_speed;
+  law.drilling = -law.mu * lever * k.torque * wy * inverse_w;
+  return law;
+}
+
+// Slipping on a finite contact: F = N d, couple = N (M_n n + tau_r) with the coupled law of section 12; N keeps
+// n . a_m = 0 as in slipping_force, with rho x d + M_n n + tau_r in place of rho x d (M_n n adds nothing to A:
+// (I'^-1 n x f_hat) . n = 0 for the axisymmetric inertia). A Hertz patch depends on N: a first pass takes a from N = m g
+// cos(alpha) and gives N, the second takes a from that N.
 void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
   const FiniteContact& fc = model.finite_contact;
-  const Eigen::Vector3d v_t = out.contact.v_t;
-  const double vt = v_t.norm(), omega_n = b.w.z(), v_eps = model.regularization_speed;
-  const double speed_sum = std::sqrt(b.u.x() * b.u.x() + b.u.y() * b.u.y()) + out.contact.rolling_speed + v_eps;
-  const Eigen::Vector3d tau_r = rolling_resistance_per_newton(model, b);
+  const Eigen::Vector3d& v_t = out.contact.v_t;
+  const double vt = v_t.norm(), omega_n = b.w.z();
+  const double speed_sum = std::sqrt(b.u.x() * b.u.x() + b.u.y() * b.u.y()) + out.contact.rolling_speed +
+                           model.regularization_speed;
   const bool constrained = model.normal_force == NormalForceModel::constrained;
-  double N = -b.m * b.g.z();
-  const int passes = fc.hertz && constrained ? 2 : 1;
-  for (int pass = 0; pass < passes; ++pass) {
-    const double a = patch_radius(fc, b.R, N);
-    const double lever = drilling_lever(fc.pressure, a);
-    const double wy = lever * omega_n, pivot = std::abs(wy);
-    const double w2 = vt * vt + wy * wy;
-    const double w_eps = std::sqrt(w2 + v_eps * v_eps);
-    const double s = std::sqrt(w2) / (speed_sum + pivot);
-    const double mu = friction_coefficient(model.friction, s);
-    const DrillingFactors k = drilling_factors(fc.law, fc.pressure, vt, pivot);
-    const double force_per_speed = mu * k.force / w_eps;
-    const Eigen::Vector3d d(-force_per_speed * v_t.x(), -force_per_speed * v_t.y(), 1.0);
-    const double m_n = -mu * lever * k.torque * wy / w_eps;  // drilling torque per newton
-    const Eigen::Vector3d Ii_T = b.inverse_inertia(b.rho.cross(d) + tau_r + Eigen::Vector3d(0.0, 0.0, m_n));
+  const bool resisting = fc.rolling_resistance != 0.0;
+  const Eigen::Vector3d tau_r = resisting ? rolling_resistance_per_newton(model, b) : Eigen::Vector3d::Zero();
+  // The torque per newton's image under I'^-1 at a law (its drilling part adds nothing to A, exactly).
+  auto torque_image = [&](const PatchLaw& law) {
+    Eigen::Vector3d T = b.rho.cross(Eigen::Vector3d(-law.force_per_speed * v_t.x(), -law.force_per_speed * v_t.y(), 1.0));
+    T.z() += law.drilling;
+    if (resisting) T += tau_r;
+    return b.inverse_inertia(T);
+  };
+  double N = -b.m * b.g.z(), a = fc.patch_radius;
+  if (fc.hertz) {
+    a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     if (constrained) {
-      // The drilling torque does not enter A: (I'^-1 n x f_hat) . n = 0 for the axisymmetric inertia.
-      const double A = Ii_T.cross(b.f_hat).z();
-      const double B = b.Ii_G.cross(b.f_hat).z();
-      const double denominator = 1.0 / b.m - b.f * A;
-      painleve = b.m * denominator;
-      const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
-      N = (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
-    } else {
-      painleve = ModeMargins::kNone;
+      N = constrained_normal_force(b, torque_image(patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n,
+                                                             speed_sum)), painleve);
+      a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     }
-    if (pass + 1 < passes) continue;
-    out.mu = mu;
-    out.contact.slip = s;
-    out.contact.t_hat = (mu > 0.0 ? force_per_speed / mu : k.force / w_eps) * v_t;
-    out.patch_radius = a;
-    out.normal_force = N;
-    out.contact_force = N * d;
-    out.couple = N * (tau_r + Eigen::Vector3d(0.0, 0.0, m_n));
-    out.drilling_torque = N * m_n;
-    out.omega_dot = N * Ii_T - b.Ii_G;
   }
-  out.dissipation = -(out.contact_force.x() * v_t.x() + out.contact_force.y() * v_t.y()) - out.couple.dot(b.w);
+  const PatchLaw law = patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n, speed_sum);
+  const Eigen::Vector3d Ii_T = torque_image(law);
+  if (constrained)
+    N = constrained_normal_force(b, Ii_T, painleve);
+  else
+    painleve = ModeMargins::kNone;
+  out.mu = law.mu;
+  out.contact.slip = law.slip;
+  out.contact.t_hat = law.force_factor_per_speed * v_t;
+  out.patch_radius = a;
+  out.normal_force = N;
+  out.contact_force = Eigen::Vector3d(-N * law.force_per_speed * v_t.x(), -N * law.force_per_speed * v_t.y(), N);
+  out.drilling_torque = N * law.drilling;
+  out.couple.z() = out.drilling_torque;
+  out.omega_dot = N * Ii_T - b.Ii_G;
+  out.dissipation = N * law.force_per_speed * v_t.squaredNorm() - out.drilling_torque * omega_n;
+  if (resisting) {
+    out.couple += N * tau_r;
+    out.dissipation -= N * tau_r.dot(b.w);
+  }
 }
 
 // The stick force on a finite contact. On a patch the unknowns are F and M_n, and the constraints d/dt v_c = 0
@@ -163,15 +194,22 @@ void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b
 
 // One mode's motion; a template so that the hot slipping path compiles without the other modes' code, and the
 // point contact without the finite contact's (kFinite: physics.md section 12).
+// The point contact's motion fills a PointContactDynamics (or a Dynamics, whose finite-contact fields it leaves).
+template <bool kFinite>
+using MotionOut = std::conditional_t<kFinite, Dynamics, PointContactDynamics>;
+
 template <ContactMode kMode, bool kFinite>
-void motion(const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
+void motion(const Model& model, const StateVector& y, MotionOut<kFinite>& out, double& painleve) {
   detail::RigidBody b(model, y);
   if constexpr (kFinite) {  // a reused Dynamics (the sample's) must not keep the last mode's patch
     out.patch_radius = out.drilling_torque = 0.0;
     out.couple.setZero();
-    add_air(model, b, out);
+    if (model.air.active()) add_air(model, b, out);
   }
-  out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
+  if constexpr (kFinite && kMode == ContactMode::slipping)
+    out.contact = contact_velocities(model, in_plane_velocity(y), b.w);
+  else
+    out.contact = contact_kinematics(model, in_plane_velocity(y), b.w);
   painleve = ModeMargins::kNone;
   if constexpr (kMode == ContactMode::slipping) {
     if constexpr (kFinite)
@@ -220,7 +258,8 @@ double cos_max_tilt(const Model& model) {
 }
 
 template <bool kFinite>
-[[gnu::always_inline]] inline void evaluate_motion_in(ContactMode mode, const Model& model, const StateVector& y, Dynamics& out, double& painleve) {
+[[gnu::always_inline]] inline void evaluate_motion_in(ContactMode mode, const Model& model, const StateVector& y,
+                                                      MotionOut<kFinite>& out, double& painleve) {
   switch (mode) {
     case ContactMode::slipping: motion<ContactMode::slipping, kFinite>(model, y, out, painleve); break;
     case ContactMode::rolling: motion<ContactMode::rolling, kFinite>(model, y, out, painleve); break;
@@ -271,7 +310,7 @@ StickForce stick_force(const Model& model, const StateVector& y) {
   if (point_contact(model)) return {rolling_force(contact_response(model, y)), 0.0};
   detail::RigidBody b(model, y);
   Dynamics scratch;
-  add_air(model, b, scratch);
+  if (model.air.active()) add_air(model, b, scratch);
   return stick_force_finite(model, b);
 }
 
@@ -294,12 +333,12 @@ namespace {
 template <bool kFinite>
 void derivative_in(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                    ContactForceRecord* record) {
-  Dynamics dyn;
+  MotionOut<kFinite> dyn;
   double painleve;
   evaluate_motion_in<kFinite>(mode, model, y, dyn, painleve);
   if (record) {
     record->force = dyn.contact_force;
-    record->drilling_torque = dyn.drilling_torque;
+    if constexpr (kFinite) record->drilling_torque = dyn.drilling_torque;
     record->painleve = painleve;
   }
   const Eigen::Vector3d f_dot = angular_velocity(y).cross(figure_axis(y));  // keeps |f_hat| in the exact flow

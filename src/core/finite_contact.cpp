@@ -1,6 +1,8 @@
 // A finite contact (physics.md section 12): patch radius, drilling lever, the exact and elliptic laws, the stick set.
 #include "top_sim/finite_contact.hpp"
 
+#include "exact_law_table.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -16,14 +18,6 @@ double effective_modulus(const Material& t, const Material& p) {
   return 1.0 / ((1.0 - t.poisson_ratio * t.poisson_ratio) / t.young_modulus +
                 (1.0 - p.poisson_ratio * p.poisson_ratio) / p.young_modulus);
 }
-
-double patch_radius(const FiniteContact& c, double tip_radius, double normal_force) {
-  if (normal_force <= 0.0) return 0.0;
-  if (!c.hertz) return c.patch_radius;
-  return std::cbrt(3.0 * normal_force * tip_radius / (4.0 * c.effective_modulus));
-}
-
-double drilling_lever(PatchPressure p, double a) { return p == PatchPressure::hertz ? 3.0 * M_PI * a / 16.0 : 2.0 * a / 3.0; }
 
 namespace {
 
@@ -99,87 +93,65 @@ PatchIntegrals patch_integrals(PatchPressure pressure, double ratio, int n) {
   return out;
 }
 
-namespace {
+namespace exact_law {
 
-// The exact law's factors on t = Rbar |omega_n| / (|v_t| + Rbar |omega_n|) in [0, 1] (t = tan(theta) / (1 +
-// tan(theta)): a division, no trigonometry, per right-hand side). kNodes nodes, cubic Hermite with
-// central-difference slopes stored per node (C1, so an adaptive step sees a smooth right-hand side). Built once per
-// pressure, on first use (~0.1 s).
-struct ExactTable {
-  static constexpr int kNodes = 129;
-  struct Node {
-    double force, force_slope, torque, torque_slope;  // slopes per node interval
-  };
-  std::array<Node, kNodes> node{};
-  std::array<double, kNodes> f{}, g{};  // the integrals themselves: the limit surface (f, g)(t)
-  static constexpr double kStep = 1.0 / (kNodes - 1);
-
-  explicit ExactTable(PatchPressure p) {
-    const double lever = drilling_lever(p, 1.0);
-    for (int i = 0; i < kNodes; ++i) {
-      // The end nodes are the limits t -> 0 and 1, taken a hair inside.
-      const double t = std::clamp(i * kStep, 1e-7, 1.0 - 1e-7);
-      const double theta = std::atan2(t, 1.0 - t);
-      const double ratio = t / ((1.0 - t) * lever);  // a omega_n / |v_t|
-      const PatchIntegrals I = patch_integrals(p, ratio, 2000);
-      f[i] = I.force;
-      g[i] = I.torque;
-      node[i].force = I.force / std::cos(theta);
-      node[i].torque = I.torque / std::sin(theta);
-    }
-    f[0] = 1.0;
-    g[0] = 0.0;
-    f[kNodes - 1] = 0.0;
-    g[kNodes - 1] = 1.0;
-    for (int i = 0; i < kNodes; ++i) {
-      const int lo = std::max(i - 1, 0), hi = std::min(i + 1, kNodes - 1);
-      node[i].force_slope = (node[hi].force - node[lo].force) / (hi - lo);
-      node[i].torque_slope = (node[hi].torque - node[lo].torque) / (hi - lo);
-    }
-  }
-
-  DrillingFactors at(double t) const {
-    const double x = std::clamp(t, 0.0, 1.0) * (kNodes - 1);
-    const int i = std::min(static_cast<int>(x), kNodes - 2);
-    const double u = x - i, u2 = u * u, u3 = u2 * u;
-    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
-    const Node& a = node[i];
-    const Node& b = node[i + 1];
-    return {h00 * a.force + h10 * a.force_slope + h01 * b.force + h11 * b.force_slope,
-            h00 * a.torque + h10 * a.torque_slope + h01 * b.torque + h11 * b.torque_slope};
-  }
-
-  // The limit surface's point at t, by the same Hermite on the integrals (slopes by central differences).
-  Eigen::Vector2d surface(double t) const {
-    const double x = std::clamp(t, 0.0, 1.0) * (kNodes - 1);
-    const int i = std::min(static_cast<int>(x), kNodes - 2);
-    const double u = x - i;
-    auto slope = [](const std::array<double, kNodes>& v, int k) {
-      const int lo = std::max(k - 1, 0), hi = std::min(k + 1, kNodes - 1);
-      return (v[hi] - v[lo]) / (hi - lo);
-    };
-    const double u2 = u * u, u3 = u2 * u;
-    const double h00 = 2 * u3 - 3 * u2 + 1, h10 = u3 - 2 * u2 + u, h01 = 3 * u2 - 2 * u3, h11 = u3 - u2;
-    return {h00 * f[i] + h10 * slope(f, i) + h01 * f[i + 1] + h11 * slope(f, i + 1),
-            h00 * g[i] + h10 * slope(g, i) + h01 * g[i + 1] + h11 * slope(g, i + 1)};
-  }
-};
-
-const ExactTable& exact_table(PatchPressure p) {
-  if (p == PatchPressure::hertz) {
-    static const ExactTable hertz(PatchPressure::hertz);
-    return hertz;
-  }
-  static const ExactTable uniform(PatchPressure::uniform);
-  return uniform;
+// Cubic Hermite coefficients in u of values p and slopes m (per interval) at the two ends.
+void hermite(double p0, double m0, double p1, double m1, double (&c)[4]) {
+  c[0] = p0;
+  c[1] = m0;
+  c[2] = 3.0 * (p1 - p0) - 2.0 * m0 - m1;
+  c[3] = 2.0 * (p0 - p1) + m0 + m1;
 }
 
-}  // namespace
+// The end nodes are the limits t -> 0 and 1, taken a hair inside; slopes are central differences (one-sided at
+// the ends).
+Table compute(PatchPressure p) {
+  Table tab{};
+  const double lever = drilling_lever(p, 1.0), step = 1.0 / (kNodes - 1);
+  double force[kNodes], torque[kNodes];
+  for (int i = 0; i < kNodes; ++i) {
+    const double t = std::clamp(i * step, 1e-7, 1.0 - 1e-7);
+    const double theta = std::atan2(t, 1.0 - t);
+    const PatchIntegrals I = patch_integrals(p, t / ((1.0 - t) * lever), 2000);  // at a omega_n / |v_t|
+    force[i] = I.force / std::cos(theta);
+    torque[i] = I.torque / std::sin(theta);
+    tab.surface_force[i] = i == 0 ? 1.0 : i == kNodes - 1 ? 0.0 : I.force;
+    tab.surface_torque[i] = i == 0 ? 0.0 : i == kNodes - 1 ? 1.0 : I.torque;
+  }
+  auto slope = [](const double* v, int k) {
+    const int lo = std::max(k - 1, 0), hi = std::min(k + 1, kNodes - 1);
+    return (v[hi] - v[lo]) / (hi - lo);
+  };
+  for (int i = 0; i + 1 < kNodes; ++i) {
+    hermite(force[i], slope(force, i), force[i + 1], slope(force, i + 1), tab.interval[i].force);
+    hermite(torque[i], slope(torque, i), torque[i + 1], slope(torque, i + 1), tab.interval[i].torque);
+  }
+  return tab;
+}
+
+Eigen::Vector2d surface(const Table& tab, double t) {
+  const double x = std::clamp(t, 0.0, 1.0) * (kNodes - 1);
+  const int i = std::min(static_cast<int>(x), kNodes - 2);
+  Eigen::Vector2d out;
+  int k = 0;
+  for (const double* v : {tab.surface_force, tab.surface_torque}) {
+    auto slope = [v](int j) {
+      const int lo = std::max(j - 1, 0), hi = std::min(j + 1, kNodes - 1);
+      return (v[hi] - v[lo]) / (hi - lo);
+    };
+    double c[4];
+    hermite(v[i], slope(i), v[i + 1], slope(i + 1), c);
+    const double u = x - i;
+    out[k++] = ((c[3] * u + c[2]) * u + c[1]) * u + c[0];
+  }
+  return out;
+}
+
+}  // namespace exact_law
 
 DrillingFactors drilling_factors(DrillingLaw law, PatchPressure p, double slip_speed, double pivot_speed) {
   if (law == DrillingLaw::elliptic) return {};
-  const double sum = slip_speed + pivot_speed;
-  return exact_table(p).at(sum > 0.0 ? pivot_speed / sum : 0.0);
+  return exact_law::factors(exact_law::table(p), slip_speed, pivot_speed);
 }
 
 double stick_margin(DrillingLaw law, PatchPressure p, double tangential_force, double drilling_torque,
@@ -192,15 +164,15 @@ double stick_margin(DrillingLaw law, PatchPressure p, double tangential_force, d
   if (law == DrillingLaw::elliptic || r == 0.0) return limit * (1.0 - r);
   // The limit surface (f, g)(t) turns monotonically from (1, 0) to (0, 1): find its point in the
   // direction of (fx, my) by bisection on the table's angle.
-  const ExactTable& table = exact_table(p);
+  const exact_law::Table& table = exact_law::table(p);
   const double beta = std::atan2(my, fx);
   double lo = 0.0, hi = 1.0;
   for (int it = 0; it < 40; ++it) {
     const double mid = 0.5 * (lo + hi);
-    const Eigen::Vector2d point = table.surface(mid);
+    const Eigen::Vector2d point = exact_law::surface(table, mid);
     (std::atan2(point.y(), point.x()) < beta ? lo : hi) = mid;
   }
-  return limit * (1.0 - r / table.surface(0.5 * (lo + hi)).norm());
+  return limit * (1.0 - r / exact_law::surface(table, 0.5 * (lo + hi)).norm());
 }
 
 }  // namespace top_sim

@@ -8,6 +8,7 @@
 #include "top_sim/dynamics.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/finite_contact.hpp"
+#include "../../src/core/exact_law_table.hpp"
 
 using namespace top_sim;
 using top_sim_test::num;
@@ -16,7 +17,7 @@ using top_sim_test::scene_from;
 namespace {
 
 // The exact law's force and torque (units mu N and mu N Rbar) at a omega_n / |v_t| = ratio, through the table.
-PatchIntegrals exact_law(PatchPressure p, double ratio) {
+PatchIntegrals law_through_table(PatchPressure p, double ratio) {
   const double lever = drilling_lever(p, 1.0);
   const double theta = std::atan(ratio * lever);
   const DrillingFactors k = drilling_factors(DrillingLaw::exact, p, 1.0, ratio * lever);
@@ -42,13 +43,41 @@ TEST(PatchIntegrals, PureSlidingAndPurePivotingAreTheLawsEnds) {
   }
 }
 
+// The compiled tables (exact_law_table.cpp, generated) are the quadrature's: regenerate them with
+// top_sim_exact_law_table when patch_integrals() changes.
+TEST(ExactDrillingLaw, CompiledTablesAreTheQuadratures) {
+  for (PatchPressure p : {PatchPressure::hertz, PatchPressure::uniform}) {
+    const exact_law::Table fresh = exact_law::compute(p);
+    const exact_law::Table& compiled = exact_law::table(p);
+    double worst = 0.0;
+    for (int i = 0; i + 1 < exact_law::kNodes; ++i)
+      for (int k = 0; k < 4; ++k)
+        worst = std::max({worst, std::abs(fresh.interval[i].force[k] - compiled.interval[i].force[k]),
+                          std::abs(fresh.interval[i].torque[k] - compiled.interval[i].torque[k])});
+    for (int i = 0; i < exact_law::kNodes; ++i)
+      worst = std::max({worst, std::abs(fresh.surface_force[i] - compiled.surface_force[i]),
+                        std::abs(fresh.surface_torque[i] - compiled.surface_torque[i])});
+    EXPECT_LT(worst, 1e-12) << to_string(p);
+  }
+}
+
+// The patch radius's cube root against the library's: the Halley steps converge to a few ulps.
+TEST(HertzPatch, CubeRootAgreesWithCbrt) {
+  double worst = 0.0;
+  for (double e = -30.0; e <= 10.0; e += 0.013) {
+    const double x = std::pow(10.0, e);
+    worst = std::max(worst, std::abs(cube_root(x) / std::cbrt(x) - 1.0));
+  }
+  EXPECT_LT(worst, 2e-15);
+}
+
 // The table's law against the patch integrals by a finer, independent quadrature: within 1 % of mu N and of
 // mu N Rbar at every ratio from 1e-3 to 1e3 (physics.md section 12).
 TEST(ExactDrillingLaw, WithinOnePercentOfThePatchIntegralsAtEveryRatio) {
   for (PatchPressure p : {PatchPressure::hertz, PatchPressure::uniform}) {
     double worst_f = 0.0, worst_g = 0.0;
     for (double r : ratios()) {
-      const PatchIntegrals ref = patch_integrals(p, r, 6000), law = exact_law(p, r);
+      const PatchIntegrals ref = patch_integrals(p, r, 6000), law = law_through_table(p, r);
       worst_f = std::max(worst_f, std::abs(law.force - ref.force));
       worst_g = std::max(worst_g, std::abs(law.torque - ref.torque));
     }
@@ -79,7 +108,7 @@ TEST(StickSet, EllipsoidAndLimitSurfaceBounds) {
   EXPECT_LT(stick_margin(DrillingLaw::elliptic, PatchPressure::hertz, 0.7 * mu * N, 0.8 * mu * N * lever, mu, N, lever), 0.0);
   // The exact law's surface passes through its own (f, g) at every ratio.
   for (double r : {0.1, 1.0, 10.0}) {
-    const PatchIntegrals I = exact_law(PatchPressure::hertz, r);
+    const PatchIntegrals I = law_through_table(PatchPressure::hertz, r);
     EXPECT_NEAR(stick_margin(DrillingLaw::exact, PatchPressure::hertz, I.force * mu * N, I.torque * mu * N * lever, mu,
                              N, lever),
                 0.0, 1e-3 * mu * N);
