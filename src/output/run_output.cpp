@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <ctime>
 #include <fstream>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +11,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "top_sim/cpu_time.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/trajectory.hpp"
@@ -86,16 +86,6 @@ std::string per_name(const std::array<double, N>& seconds) {
 
 // A fault: the core's kind, or (from a TopState, which carries only the text) its message.
 bool faulted(const Snapshot& s) { return s.fault != ContactFault::none || !s.fault_message.empty(); }
-
-}  // namespace
-
-double thread_cpu_seconds() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-namespace {
 
 // advance_to in slices of progress_interval wall seconds, reporting the time reached after each.
 void advance(Simulator& sim, double t, const RunOptions& opt) {

@@ -10,6 +10,7 @@
 #include <array>
 #include <cstdint>
 
+#include "top_sim/cpu_time.hpp"  // thread_cpu_seconds, which every tool reports
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"
 
@@ -85,9 +86,6 @@ struct RunResult {
 
 // Advances the simulator from its current time by options.duration.
 RunResult run(Simulator& sim, const RunOptions& options);
-
-// CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
-double thread_cpu_seconds();
 
 // The trajectory CSV (docs/interfaces.md): each number is std::to_chars' shortest text that reads back as the same
 // double (NaN as "nan"), formatted straight into a block buffer written a block at a time; flush() before checking

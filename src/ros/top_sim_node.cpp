@@ -28,6 +28,7 @@
 #include "top_set.hpp"
 #include "topic_opener.hpp"
 #include "top_sim/Kill.h"
+#include "top_sim/cpu_time.hpp"
 #include "top_sim/ListTops.h"
 #include "top_sim/Spawn.h"
 
@@ -207,13 +208,13 @@ class TopSimNode {
   void tick() {
     const double wall = ros::WallTime::now().toSec();
     install_topics(wall);
-    const double cpu0 = top_sim_ros::thread_cpu_seconds();
+    const double cpu0 = top_sim::thread_cpu_seconds();
     std::size_t steps = 0;
     tops_.advance(wall, tops_.launch_top().pacer().budget(), paused_, [&](top_sim_ros::NodeTop& t) {
       steps += t.take_steps();
       t.report(params_.real_time_factor, params_.publish_rate, paused_);
     });
-    diagnostics_->add_physics(steps, top_sim_ros::thread_cpu_seconds() - cpu0);
+    diagnostics_->add_physics(steps, top_sim::thread_cpu_seconds() - cpu0);
     rejections_.flush(wall);
     output_->publish(tops_, wall, paused_, params_.real_time_factor);
     updater_.update();
