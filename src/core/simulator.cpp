@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/counters.hpp"
+#include "counters.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "test_util.hpp"
-#include "top_sim/counters.hpp"
+#include "../../src/core/counters.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
