@@ -164,7 +164,7 @@ class TopSimNode {
         pnh_, top.prefix(), top.name(),
         [this, &sim, shown](const top_sim::Command& c) {  // runs in spinOnce() on the loop's thread
           const std::string error = sim.submit(c);
-          if (error.empty() && shown && reconfigure_) reconfigure_->show(c);
+          if (error.empty() && shown && reconfigure_) reconfigure_->record_for_push(c);
           return error;
         },
         [&sim] { return sim.model().friction; }, rejections_);
@@ -184,7 +184,7 @@ class TopSimNode {
     hooks.submit = [this](const top_sim::Command& c) {
       const std::string error = tops_.launch_top().sim().submit(c);
       if (error.empty())
-        reconfigure_->show(c);
+        reconfigure_->record_for_push(c);
       else
         rejections_.warn("dynamic_reconfigure rejected: " + error, ros::WallTime::now().toSec());
       return error;
@@ -307,11 +307,11 @@ class TopSimNode {
     const double t = tops_.launch_top().sim().time();
     const double wall = ros::WallTime::now().toSec();
     for (auto& top : tops_) top->reset(wall);
-    reconfigure_->show_scene(scene_);
+    reconfigure_->record_scene_for_push(scene_);
     // The launch-time top returns to the start the user chose (alpha:=, spin:=), as it started, not to the file's.
     if (!start_command_.empty()) {
       tops_.launch_top().sim().submit(start_command_);
-      reconfigure_->show(start_command_);
+      reconfigure_->record_for_push(start_command_);
     }
     res.success = true;
     std::ostringstream os;
