@@ -9,7 +9,7 @@
 #include <functional>
 #include <vector>
 
-#include "top_sim/counters.hpp"
+#include "../src/core/counters.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"

@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "../src/output/run_output.hpp"
+#include "../src/output/run.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"

@@ -8,7 +8,7 @@
 #include <new>
 #include <string>
 
-#include "top_sim/counters.hpp"
+#include "../src/core/counters.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

@@ -11,7 +11,7 @@ set_target_properties(top_sim_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # What every tool writes (CSV, summary, plots) and reads (arguments): top_sim_run, top_sim_bag, the CLI tools.
 # ROS-free, above the core; the tools are thin adapters over both (docs/architecture.md).
-add_library(top_sim_output src/output/run_output.cpp src/output/plot.cpp)
+add_library(top_sim_output src/output/run.cpp src/output/writers.cpp src/output/plot.cpp)
 target_include_directories(top_sim_output PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/output)
 target_link_libraries(top_sim_output PUBLIC top_sim_core)
 

@@ -84,7 +84,7 @@ class Simulator {
   const std::string& fault_message() const { return fault_message_; }
   // The analytic sleeping state for the current alpha and shell spin (solved on the first read, then cached).
   const StationaryState& stationary() const { return sample().stationary; }
-  double max_energy_residual() const { return max_residual_; }
+  double max_energy_residual() const { return max_energy_residual_seen_; }
 
   ContactMode contact_mode() const { return mode_; }
   // Simulated seconds spent in each contact mode since the last reset (index: ContactMode).
@@ -120,8 +120,9 @@ class Simulator {
   void select_stepper();
   const Stepper& numeric_stepper() const { return closed_flight_ ? *parked_ : *stepper_; }
   ModeMargins step_end_margins(const StateVector& y, Dynamics& evaluated, bool& has_evaluated);
-  int fired(const ModeMargins& m, const StateVector& y) const;
-  void handle_event(int event, const ModeMargins& m);
+  enum class Event;  // what a sample shows (simulator.cpp)
+  Event sample_event(const ModeMargins& m, const StateVector& y) const;
+  void handle_event(Event event, const ModeMargins& m);
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void reclose_contact();
   void fail(ContactFault fault, const std::string& message);
@@ -144,7 +145,7 @@ class Simulator {
   double t_origin_ = 0.0;              // time of the last reset: scripted events are relative to it
   double scanned_ = 0.0;               // the current step's dense output is scanned for events up to here
   double next_event_t_ = 0.0;          // t_origin_ + the next scripted event's t (infinite when none is left)
-  double max_energy_residual_ = 0.0;   // the scene's integrator.max_energy_residual
+  double energy_residual_limit_ = 0.0;  // the scene's integrator.max_energy_residual
   std::unique_ptr<Stepper> stepper_;
   std::size_t next_event_ = 0;
   ContactFault fault_ = ContactFault::none;
@@ -159,7 +160,7 @@ class Simulator {
   double layer_width_ = 0.0;
   double cos_max_tilt_ = 1.0;
   EnergyBalance balance_;
-  double max_residual_ = 0.0;
+  double max_energy_residual_seen_ = 0.0;  // since the last reset
   ModeMargins last_margins_;          // at scanned_
   ContactForceRecord record_;         // the contact force of the last right-hand side (at stepper_'s state if it says so)
   // The regime cadence: the last point's time, index and regime (the hysteresis of classify()), and the seconds.

@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "run_output.hpp"
+#include "run.hpp"
 #include "top_sim/scene.hpp"
 
 namespace top_sim {

@@ -13,7 +13,7 @@
 #include "arguments.hpp"
 #include "fit_data.hpp"
 #include "plot.hpp"
-#include "run_output.hpp"
+#include "run.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/scene.hpp"

@@ -12,7 +12,7 @@
 #include <unistd.h>
 
 #include "arguments.hpp"
-#include "run_output.hpp"
+#include "writers.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/pacing.hpp"
 #include "top_sim/scene.hpp"

@@ -14,7 +14,7 @@
 #include <string>
 #include <vector>
 
-#include "run_output.hpp"
+#include "run.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/scene.hpp"

@@ -1,5 +1,5 @@
 // Work counters of the core (counters.hpp).
-#include "top_sim/counters.hpp"
+#include "counters.hpp"
 
 namespace top_sim {
 

@@ -1,5 +1,5 @@
 // The implicit midpoint rule y1 = y0 + h f((y0 + y1) / 2), solved by simplified Newton: the step of the fixed-step
-// method `implicit_midpoint` (its time keeping is FixedStepper's, integrators.cpp).
+// method `implicit_midpoint` (its time keeping is FixedStepper's, fixed_stepper.cpp).
 #pragma once
 
 #include <Eigen/Core>

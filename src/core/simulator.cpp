@@ -10,7 +10,7 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/counters.hpp"
+#include "counters.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
@@ -19,9 +19,6 @@
 namespace top_sim {
 
 namespace {
-
-// Event codes of one sample, in the order they are handled when several fire together.
-enum Event { kNoEvent = 0, kPainleve, kLift, kTransfer, kFallen };
 
 // Samples per nutation period where a margin is near its threshold (physics.md section 9: the shortest sign dips,
 // e.g. the 34 us of negative N in the first 76 us hop at 5000 rad/s, last about 1/20 of a nutation period).
@@ -114,8 +111,11 @@ std::string impact_painleve_message(double t, double denominator) {
 
 }  // namespace
 
+// What one sample of the dense output shows; when several show at once, the first in this order is handled.
+enum class Simulator::Event { none, painleve, lift_off, touchdown, transfer, fallen };
+
 Simulator::Simulator(const Scene& scene)
-    : max_energy_residual_(scene.integrator.max_energy_residual), model_(scene.model), scene_(scene) {
+    : energy_residual_limit_(scene.integrator.max_energy_residual), model_(scene.model), scene_(scene) {
   stepper_ = make_stepper(
       scene_.integrator,
       [this](const StateVector& y, StateVector& dydt) {
@@ -150,7 +150,7 @@ void Simulator::reset() {
   schedule_next_event();
   fault_ = ContactFault::none;
   fault_message_.clear();
-  max_residual_ = 0.0;
+  max_energy_residual_seen_ = 0.0;
   mode_seconds_.fill(0.0);
   switches_.clear();
   switch_count_ = 0;
@@ -380,18 +380,18 @@ bool Simulator::advance_to(double t_target, double budget_seconds, std::chrono::
 }
 
 // Which event a sample shows: faults, then lift-off / touchdown, then stick / slip (armed margins only).
-int Simulator::fired(const ModeMargins& m, const StateVector& y) const {
-  if (model_.kind != ModelKind::full) return kNoEvent;
-  if (m.painleve <= 0.0) return kPainleve;
+Simulator::Event Simulator::sample_event(const ModeMargins& m, const StateVector& y) const {
+  if (model_.kind != ModelKind::full) return Event::none;
+  if (m.painleve <= 0.0) return Event::painleve;
   if (mode_ == ContactMode::flight) {
     // Touchdown: the gap is down to 0 while closing; a flight starts at gap 0 with a non-negative rate.
-    if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) return kLift;
+    if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) return Event::touchdown;
   } else if (lift_armed_ && m.lift < 0.0) {
-    return kLift;
+    return Event::lift_off;
   }
-  if (transfer_armed_ && m.transfer <= 0.0) return kTransfer;
-  if (m.tilt < 0.0) return kFallen;
-  return kNoEvent;
+  if (transfer_armed_ && m.transfer <= 0.0) return Event::transfer;
+  if (m.tilt < 0.0) return Event::fallen;
+  return Event::none;
 }
 
 // Scans the last step's dense output from scanned_ to t_end for events. Returns true when none fired; otherwise
@@ -400,8 +400,8 @@ bool Simulator::scan_events(double t_end) {
   const double t0 = scanned_;
   const StateVector& y1 = begin_scan(t_end);
   const double residual = balance_.residual(scan_end_.energy, y1);
-  max_residual_ = std::max(max_residual_, residual);
-  if (!(residual <= max_energy_residual_)) {  // an unstable step: its events would be fiction
+  max_energy_residual_seen_ = std::max(max_energy_residual_seen_, residual);
+  if (!(residual <= energy_residual_limit_)) {  // an unstable step: its events would be fiction
     stop_at_step_start(" (the energy balance drifted by " + format_number(residual) + " of the energy scale, over " +
                        "integrator.max_energy_residual = " + format_number(scene_.integrator.max_energy_residual) +
                        ": the step is unstable)");
@@ -422,14 +422,14 @@ bool Simulator::scan_events(double t_end) {
     const double tk = k == samples ? t_end : t0 + (t_end - t0) * k / samples;
     if (k == samples) yk = y1; else stepper_->state_at(tk, yk);
     const ModeMargins mk = k == samples ? m1 : margins_of(model_, mode_, yk);
-    if (fired(mk, yk) != kNoEvent) {
+    if (sample_event(mk, yk) != Event::none) {
       // Bisect between the last quiet sample and this one for the first instant an event fires.
       double lo = t_prev, hi = tk;
       StateVector ym;
       for (int i = 0; i < 80 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++i) {
         const double mid = 0.5 * (lo + hi);
         stepper_->state_at(mid, ym);
-        if (fired(margins_of(model_, mode_, ym), ym) != kNoEvent) hi = mid; else lo = mid;
+        if (sample_event(margins_of(model_, mode_, ym), ym) != Event::none) hi = mid; else lo = mid;
       }
       run_cadence(hi);  // the regime's points up to the event, on this step's dense output
       if (fault_ != ContactFault::none || take_handover()) return false;
@@ -437,8 +437,8 @@ bool Simulator::scan_events(double t_end) {
       t_ = hi;
       invalidate_sample();
       const ModeMargins mh = margins_of(model_, mode_, y_);
-      int event = fired(mh, y_);
-      if (event == kNoEvent) event = fired(mk, yk);  // rounding at the boundary: keep the sample's verdict
+      Event event = sample_event(mh, y_);
+      if (event == Event::none) event = sample_event(mk, yk);  // rounding at the boundary: keep the sample's verdict
       handle_event(event, mh);
       return false;
     }
@@ -477,15 +477,15 @@ ModeMargins Simulator::step_end_margins(const StateVector& y, Dynamics& evaluate
   return evaluated.margins;
 }
 
-void Simulator::handle_event(int event, const ModeMargins& m) {
+void Simulator::handle_event(Event event, const ModeMargins& m) {
   switch (event) {
-    case kPainleve:
+    case Event::painleve:
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
-    case kFallen:
+    case Event::fallen:
       fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
       return;
-    case kTransfer:
+    case Event::transfer:
       if (mode_ == ContactMode::slipping) {
         const double e0 = mechanical_energy(model_, y_);
         apply_stick_impulse(model_, y_);
@@ -496,27 +496,25 @@ void Simulator::handle_event(int event, const ModeMargins& m) {
         switch_mode(ContactMode::slipping, ModeSwitchKind::slip);  // starts with v_t = 0
       }
       break;
-    case kLift:
-      if (mode_ != ContactMode::flight) {
-        y_[idx::gap] = y_[idx::gap_rate] = 0.0;
-        switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
-        break;
-      }
-      {
-        y_[idx::gap] = 0.0;
-        const double e0 = mechanical_energy(model_, y_);
-        const ImpactResult impact = apply_impact(model_, y_);
-        if (impact.painleve) {
-          fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
-          return;
-        }
-        ContactMode next = ContactMode::flight;  // a bounce flies again
-        if (impact.plastic) next = close_contact(model_, y_).mode;  // Painleve: slipping, reported by the restart
-        const double loss = e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
-        y_[idx::w_diss] += loss;
-        switch_mode(next, ModeSwitchKind::touchdown, -loss);
-      }
+    case Event::lift_off:
+      y_[idx::gap] = y_[idx::gap_rate] = 0.0;
+      switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
       break;
+    case Event::touchdown: {
+      y_[idx::gap] = 0.0;
+      const double e0 = mechanical_energy(model_, y_);
+      const ImpactResult impact = apply_impact(model_, y_);
+      if (impact.painleve) {
+        fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+        return;
+      }
+      ContactMode next = ContactMode::flight;  // a bounce flies again
+      if (impact.plastic) next = close_contact(model_, y_).mode;  // Painleve: slipping, reported by the restart
+      const double loss = e0 - mechanical_energy(model_, y_);  // an impact never raises E: the loss is booked
+      y_[idx::w_diss] += loss;
+      switch_mode(next, ModeSwitchKind::touchdown, -loss);
+      break;
+    }
     default:
       return;
   }
@@ -559,7 +557,7 @@ bool Simulator::scan_flight(double t_end, const StateVector& y1) {
   y_ = y1;
   t_ = t_end;
   invalidate_sample();
-  handle_event(kLift, margins_of(model_, mode_, y_));
+  handle_event(Event::touchdown, margins_of(model_, mode_, y_));
   return false;
 }
 

@@ -5,7 +5,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "top_sim/counters.hpp"
+#include "counters.hpp"
 
 namespace top_sim {
 

@@ -212,8 +212,8 @@ std::string friction_change(const top_sim::TopCommand& msg, top_sim::FrictionCha
 
 }  // namespace
 
-top_sim::Command to_command(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
-                            std::string& error) {
+top_sim::Command command_from_message(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
+                                      std::string& error) {
   top_sim::Command c;
   error.clear();
   if (msg.set_inclination) c.inclination = msg.inclination;

@@ -52,7 +52,7 @@ void to_grid_transform(const top_sim::TopPose& s, double pitch, const ros::Time&
 // The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`. A new friction
 // law takes the parameters the message gives (friction_given, else the law's nonzero fields) over `in_force`
 // (top_sim::changed_law: the rule Python's apply and dynamic_reconfigure follow too).
-top_sim::Command to_command(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
-                            std::string& error);
+top_sim::Command command_from_message(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
+                                      std::string& error);
 
 }  // namespace top_sim_ros

@@ -34,7 +34,6 @@ class NodeDiagnostics {
   std::size_t steps_ = 0, published_ = 0;
 };
 
-double thread_cpu_seconds();
 double process_cpu_seconds();
 
 }  // namespace top_sim_ros

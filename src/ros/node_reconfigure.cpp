@@ -71,7 +71,7 @@ NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, cons
   });
 }
 
-void NodeReconfigure::show(const top_sim::Command& c) {
+void NodeReconfigure::record_for_push(const top_sim::Command& c) {
   if (c.inclination) config_.alpha = *c.inclination;
   if (c.spin) config_.spin = *c.spin;
   if (c.friction) friction_to_config(*c.friction, config_);
@@ -84,7 +84,7 @@ void NodeReconfigure::show(const top_sim::Command& c) {
   if (c.inclination || c.spin || c.friction || finite) dirty_ = true;  // pushed by the slow timer
 }
 
-void NodeReconfigure::show_scene(const top_sim::Scene& scene) {
+void NodeReconfigure::record_scene_for_push(const top_sim::Scene& scene) {
   config_.alpha = scene.model.plane.inclination;
   config_.spin = scene.initial.spin;
   friction_to_config(scene.model.friction, config_);

@@ -29,8 +29,10 @@ class NodeReconfigure {
   NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, const top_sim::Command& start,
                   double real_time_factor, double publish_rate, ReconfigureHooks hooks);
 
-  void show(const top_sim::Command& applied);  // an accepted command, from any source, is shown
-  void show_scene(const top_sim::Scene& scene);  // after a reset
+  // Records the values an accepted command (from any source) or a reset's scene put in force, and marks them for the
+  // slow timer to push to dynamic_reconfigure (never on a command's path).
+  void record_for_push(const top_sim::Command& applied);
+  void record_scene_for_push(const top_sim::Scene& scene);
 
  private:
   void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level);

@@ -55,7 +55,7 @@ void TopInput::on_spin(const std_msgs::Float64::ConstPtr& m) {
 
 void TopInput::on_command(const top_sim::TopCommand::ConstPtr& m) {
   std::string error;
-  const top_sim::Command c = to_command(*m, friction_(), error);
+  const top_sim::Command c = command_from_message(*m, friction_(), error);
   if (!error.empty()) {
     log_.warn(label_ + "command rejected: " + error, ros::WallTime::now().toSec());
     return;

@@ -19,7 +19,7 @@
 #include "arguments.hpp"
 #include "conversions.hpp"
 #include "plot.hpp"
-#include "run_output.hpp"
+#include "writers.hpp"
 #include "top_sim/TopState.h"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"

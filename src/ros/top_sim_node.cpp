@@ -28,6 +28,7 @@
 #include "top_set.hpp"
 #include "topic_opener.hpp"
 #include "top_sim/Kill.h"
+#include "top_sim/cpu_time.hpp"
 #include "top_sim/ListTops.h"
 #include "top_sim/Spawn.h"
 
@@ -163,7 +164,7 @@ class TopSimNode {
         pnh_, top.prefix(), top.name(),
         [this, &sim, shown](const top_sim::Command& c) {  // runs in spinOnce() on the loop's thread
           const std::string error = sim.submit(c);
-          if (error.empty() && shown && reconfigure_) reconfigure_->show(c);
+          if (error.empty() && shown && reconfigure_) reconfigure_->record_for_push(c);
           return error;
         },
         [&sim] { return sim.model().friction; }, rejections_);
@@ -183,7 +184,7 @@ class TopSimNode {
     hooks.submit = [this](const top_sim::Command& c) {
       const std::string error = tops_.launch_top().sim().submit(c);
       if (error.empty())
-        reconfigure_->show(c);
+        reconfigure_->record_for_push(c);
       else
         rejections_.warn("dynamic_reconfigure rejected: " + error, ros::WallTime::now().toSec());
       return error;
@@ -207,13 +208,13 @@ class TopSimNode {
   void tick() {
     const double wall = ros::WallTime::now().toSec();
     install_topics(wall);
-    const double cpu0 = top_sim_ros::thread_cpu_seconds();
+    const double cpu0 = top_sim::thread_cpu_seconds();
     std::size_t steps = 0;
     tops_.advance(wall, tops_.launch_top().pacer().budget(), paused_, [&](top_sim_ros::NodeTop& t) {
       steps += t.take_steps();
       t.report(params_.real_time_factor, params_.publish_rate, paused_);
     });
-    diagnostics_->add_physics(steps, top_sim_ros::thread_cpu_seconds() - cpu0);
+    diagnostics_->add_physics(steps, top_sim::thread_cpu_seconds() - cpu0);
     rejections_.flush(wall);
     output_->publish(tops_, wall, paused_, params_.real_time_factor);
     updater_.update();
@@ -306,11 +307,11 @@ class TopSimNode {
     const double t = tops_.launch_top().sim().time();
     const double wall = ros::WallTime::now().toSec();
     for (auto& top : tops_) top->reset(wall);
-    reconfigure_->show_scene(scene_);
+    reconfigure_->record_scene_for_push(scene_);
     // The launch-time top returns to the start the user chose (alpha:=, spin:=), as it started, not to the file's.
     if (!start_command_.empty()) {
       tops_.launch_top().sim().submit(start_command_);
-      reconfigure_->show(start_command_);
+      reconfigure_->record_for_push(start_command_);
     }
     res.success = true;
     std::ostringstream os;

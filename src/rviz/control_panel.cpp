@@ -250,7 +250,7 @@ void ControlWidget::apply() {
   for (const std::string& p : law_parameters(f.friction_law)) f.friction[p] = text_of(parameters_[p]);
   for (const auto& [name, field] : contact_) f.contact[name] = text_of(field);
   top_sim::TopCommand c;
-  const std::string error = to_command(f, c);
+  const std::string error = fields_to_message(f, c);
   if (!error.empty()) return show_message(refused_message(error));  // nothing is sent
   const std::string topic = top_name_of(node_, top(), "command");
   auto it = commands_.find(topic);

@@ -109,7 +109,7 @@ std::string contact_command(const PanelFields& f, top_sim::TopCommand& out, top_
 
 }  // namespace
 
-std::string to_command(const PanelFields& f, top_sim::TopCommand& out) {
+std::string fields_to_message(const PanelFields& f, top_sim::TopCommand& out) {
   out = top_sim::TopCommand();
   top_sim::Command check;
   std::string error = number_field("inclination", f.inclination, out.set_inclination, out.inclination,

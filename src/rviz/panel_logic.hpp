@@ -41,7 +41,7 @@ constexpr ContactField kContactFields[] = {{"patch_radius", "m", "a"},
 // The fields as one TopCommand, checked with the core's rules (top_sim::validate of a Command and of a friction
 // law); "" or an error naming the field, the text and the allowed range. Law parameters left empty are not given:
 // the node keeps their values in force (TopCommand.friction_given).
-std::string to_command(const PanelFields& fields, top_sim::TopCommand& out);
+std::string fields_to_message(const PanelFields& fields, top_sim::TopCommand& out);
 
 // The laws a panel offers and the parameters each reads (the core's tables; the table law needs points, which a
 // panel field cannot carry, so it is not offered).

@@ -10,7 +10,7 @@
 #include <string>
 
 #include "test_util.hpp"
-#include "top_sim/counters.hpp"
+#include "../../src/core/counters.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 
@@ -30,7 +30,7 @@ top_sim::Simulator* warmed(const std::string& scene) {
 // after a located event adds any. On event-free stretches (the default top precessing towards sleep, the hopping top
 // after its hops) the count is exactly 6 (steps + rejected), measured at HEAD: +0 over 1 s each. A dynamics
 // evaluation added to the step's bookkeeping would add one per step.
-TEST(Counters, RightHandSidesPerDopri5Step) {
+TEST(Counters, Dopri5MakesAtMostSixRightHandSidesPerStepTried) {
   for (const char* scene : {"default.yaml", "hopping.yaml"}) {
     std::unique_ptr<top_sim::Simulator> sim(warmed(scene));
     const top_sim::StepperStats before = sim->stats();

@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "../../src/output/run_output.hpp"
+#include "../../src/output/run.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

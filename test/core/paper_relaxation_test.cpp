@@ -10,7 +10,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/run_output.hpp"
+#include "../../src/output/run.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

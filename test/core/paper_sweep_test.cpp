@@ -136,7 +136,7 @@ std::string sweep_binary() {
   return run.substr(0, run.rfind('/') + 1) + "top_sim_sweep";
 }
 
-TEST(PaperFig4, CommandLine) {
+TEST(PaperFig4, SweepRefusesAnAlphaOutOfRangeAndWritesOneRowPerAlpha) {
   const std::string bin = sweep_binary();
   if (std::FILE* f = std::fopen(bin.c_str(), "r")) std::fclose(f);
   else GTEST_SKIP() << bin << " not built";

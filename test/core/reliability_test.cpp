@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/run_output.hpp"
+#include "../../src/output/run.hpp"
 #include "top_sim/command.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/friction.hpp"

@@ -1,4 +1,4 @@
-// The summary of a stream of Snapshots (SummaryAccumulator, src/output/run_output): what top_sim_run's samples and
+// The summary of a stream of Snapshots (SummaryAccumulator, src/output/run.hpp): what top_sim_run's samples and
 // top_sim_bag's TopStates both feed. Synthetic streams with known answers, then a sampled run.
 #include <gtest/gtest.h>
 

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "../../src/output/run_output.hpp"
+#include "../../src/output/writers.hpp"
 #include "finite_fields.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"

@@ -38,8 +38,10 @@ void replay(const std::string& name, Target target) {
   }
 }
 
-TEST(FuzzSeeds, SceneLoader) { replay("scene_loader", top_sim::fuzz::scene_loader); }
-TEST(FuzzSeeds, Command) { replay("command", top_sim::fuzz::command); }
-TEST(FuzzSeeds, Step) { replay("step", top_sim::fuzz::step); }
+TEST(FuzzSeeds, SceneSeedsAreRefusedWithAMessageOrRunFiniteOrToANamedFault) {
+  replay("scene_loader", top_sim::fuzz::scene_loader);
+}
+TEST(FuzzSeeds, CommandSeedsAreAppliedAsValidatedOrRefusedWithoutEffect) { replay("command", top_sim::fuzz::command); }
+TEST(FuzzSeeds, StepSeedsStepToAFiniteStateOrANamedFault) { replay("step", top_sim::fuzz::step); }
 
 }  // namespace

@@ -21,7 +21,7 @@
 #include "top_sim/simulator.hpp"
 #include "top_sim/trajectory.hpp"
 
-using top_sim_ros::to_command;
+using top_sim_ros::command_from_message;
 
 TEST(TopCommand, OnlySetFieldsAreCarried) {
   top_sim::TopCommand m;
@@ -29,7 +29,7 @@ TEST(TopCommand, OnlySetFieldsAreCarried) {
   m.inclination = 0.2;
   m.spin = 99.0;  // not set: ignored
   std::string error;
-  const top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
+  const top_sim::Command c = command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.inclination);
   EXPECT_EQ(*c.inclination, 0.2);
@@ -44,7 +44,7 @@ TEST(TopCommand, FrictionLawByName) {
   m.table_s = {0.0, 0.5, 1.0};
   m.table_mu = {0.0, 0.3, 0.2};
   std::string error;
-  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
+  top_sim::Command c = command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.friction);
   EXPECT_EQ(c.friction->kind, top_sim::FrictionLawKind::table);
@@ -52,11 +52,11 @@ TEST(TopCommand, FrictionLawByName) {
   EXPECT_EQ(c.friction->points[1].second, 0.3);
 
   m.table_mu.pop_back();
-  to_command(m, top_sim::FrictionLaw(), error);
+  command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("table_mu"), std::string::npos) << error;
 
   m.friction_law = "viscous";
-  to_command(m, top_sim::FrictionLaw(), error);
+  command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("friction_law = 'viscous'"), std::string::npos) << error;
 }
 
@@ -73,7 +73,7 @@ TEST(TopCommand, EveryFrictionParameterIsCarried) {
 #undef TOP_SIM_SET_FIELD
     std::string error;
     const top_sim::FrictionLaw in_force;
-    const top_sim::Command c = to_command(m, in_force, error);
+    const top_sim::Command c = command_from_message(m, in_force, error);
     EXPECT_EQ(error, "");
     ASSERT_TRUE(c.friction);
     value = 0.0;
@@ -98,7 +98,7 @@ TEST(TopCommand, LawParametersNotGivenKeepTheLawInForce) {
   m.friction_law = "paper";
   m.mu_c = 0.3;
   std::string error;
-  top_sim::Command c = to_command(m, in_force, error);
+  top_sim::Command c = command_from_message(m, in_force, error);
   ASSERT_EQ(error, "");
   ASSERT_TRUE(c.friction);
   EXPECT_EQ(c.friction->mu_c, 0.3);
@@ -109,21 +109,21 @@ TEST(TopCommand, LawParametersNotGivenKeepTheLawInForce) {
   z.set_friction = true;
   z.friction_law = "coulomb";
   z.friction_given = {"mu"};
-  c = to_command(z, in_force, error);
+  c = command_from_message(z, in_force, error);
   ASSERT_EQ(error, "");
   EXPECT_EQ(c.friction->kind, top_sim::FrictionLawKind::coulomb);
   EXPECT_EQ(c.friction->mu, 0.0);
   z.friction_given.clear();  // nothing given: Coulomb with the mu in force
-  c = to_command(z, in_force, error);
+  c = command_from_message(z, in_force, error);
   EXPECT_EQ(c.friction->mu, 0.7);
   z.friction_given = {"mu_c"};
-  to_command(z, in_force, error);
+  command_from_message(z, in_force, error);
   EXPECT_EQ(error, "friction_given: 'mu_c': the coulomb law reads mu");
 }
 
 TEST(TopCommand, EmptyCommandIsReported) {
   std::string error;
-  to_command(top_sim::TopCommand(), top_sim::FrictionLaw(), error);
+  command_from_message(top_sim::TopCommand(), top_sim::FrictionLaw(), error);
   EXPECT_NE(error.find("no field is set"), std::string::npos) << error;
 }
 
@@ -585,7 +585,7 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   m.static_friction = 0.4;
   m.restitution = 0.7;  // not set: ignored
   std::string error;
-  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
+  top_sim::Command c = command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.static_friction);
   EXPECT_EQ(*c.static_friction, 0.4);
@@ -595,7 +595,7 @@ TEST(TopCommand, StaticFrictionAndRestitutionAreCarriedUnvalidated) {
   m.set_static_friction = false;
   m.set_restitution = true;
   m.restitution = 1.5;  // out of [0, 1]: the adapter carries it, the core's validation rejects it
-  c = to_command(m, top_sim::FrictionLaw(), error);
+  c = command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.restitution);
   EXPECT_EQ(*c.restitution, 1.5);
@@ -614,7 +614,7 @@ TEST(TopCommand, FiniteContactAndAirAreCarriedUnvalidated) {
   m.set_drag = true;
   m.drag = 4.0e-6;
   std::string error;
-  top_sim::Command c = to_command(m, top_sim::FrictionLaw(), error);
+  top_sim::Command c = command_from_message(m, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   EXPECT_FALSE(c.patch_radius);
   ASSERT_TRUE(c.rolling_resistance && c.spin_drag && c.drag);
@@ -625,7 +625,7 @@ TEST(TopCommand, FiniteContactAndAirAreCarriedUnvalidated) {
   top_sim::TopCommand only_patch;
   only_patch.set_patch_radius = true;
   only_patch.patch_radius = -1.0;
-  c = to_command(only_patch, top_sim::FrictionLaw(), error);
+  c = command_from_message(only_patch, top_sim::FrictionLaw(), error);
   EXPECT_EQ(error, "");
   ASSERT_TRUE(c.patch_radius);
   EXPECT_EQ(*c.patch_radius, -1.0);

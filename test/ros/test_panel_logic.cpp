@@ -20,20 +20,20 @@ TEST(PanelLogic, MotionFieldsBecomeACommandAndBadTextNamesFieldAndRange) {
   PanelFields f;
   f.inclination = "0.2";
   top_sim::TopCommand c;
-  EXPECT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_TRUE(c.set_inclination);
   EXPECT_EQ(c.inclination, 0.2);
   EXPECT_FALSE(c.set_spin);
   EXPECT_FALSE(c.set_friction);
   f.spin = "-150";
-  EXPECT_EQ(top_sim_rviz::to_command(f, c), "");
+  EXPECT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_EQ(c.spin, -150.0);
   f.inclination = "0.2x";
-  EXPECT_EQ(top_sim_rviz::to_command(f, c), "inclination = '0.2x': must be a number");
+  EXPECT_EQ(top_sim_rviz::fields_to_message(f, c), "inclination = '0.2x': must be a number");
   f.inclination = "1.6";  // the core's rule, not a copy of it
-  EXPECT_NE(top_sim_rviz::to_command(f, c).find("inclination = 1.6: must be finite with |alpha| < pi/2"),
+  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("inclination = 1.6: must be finite with |alpha| < pi/2"),
             std::string::npos);
-  EXPECT_EQ(top_sim_rviz::refused_message(top_sim_rviz::to_command(PanelFields(), c)),
+  EXPECT_EQ(top_sim_rviz::refused_message(top_sim_rviz::fields_to_message(PanelFields(), c)),
             "Nothing was sent: no value was typed in and no friction law picked.");
 }
 
@@ -43,21 +43,21 @@ TEST(PanelLogic, ContactFieldsGiveOnlyWhatIsFilledInAndTheCoreChecksThem) {
   f.contact["patch_radius"] = "2e-4";
   f.contact["spin_drag"] = "";  // empty: not sent
   top_sim::TopCommand c;
-  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  ASSERT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_TRUE(c.set_patch_radius);
   EXPECT_EQ(c.patch_radius, 2e-4);
   EXPECT_FALSE(c.set_spin_drag || c.set_rolling_resistance || c.set_drag || c.set_inclination || c.set_friction);
   const std::string a = top_sim::format_number(2e-4);  // numbers as every message prints them
   EXPECT_EQ(top_sim_rviz::sent_message(c, "top"), "Sent to top 'top': patch_radius " + a + " m.");
   f.contact["drag"] = "1e-6";
-  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  ASSERT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_EQ(top_sim_rviz::sent_message(c, "top"),
             "Sent to top 'top': patch_radius " + a + " m and drag " + top_sim::format_number(1e-6) + " N s/m.");
   f.contact["patch_radius"] = "-1";
-  EXPECT_NE(top_sim_rviz::to_command(f, c).find("patch_radius = -1: must be >= 0"), std::string::npos)
-      << top_sim_rviz::to_command(f, c);
+  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("patch_radius = -1: must be >= 0"), std::string::npos)
+      << top_sim_rviz::fields_to_message(f, c);
   f.contact["patch_radius"] = "wide";
-  EXPECT_EQ(top_sim_rviz::to_command(f, c), "patch_radius = 'wide': must be a number");
+  EXPECT_EQ(top_sim_rviz::fields_to_message(f, c), "patch_radius = 'wide': must be a number");
 }
 
 TEST(PanelLogic, FrictionFieldsGiveOnlyWhatIsFilledIn) {
@@ -66,16 +66,16 @@ TEST(PanelLogic, FrictionFieldsGiveOnlyWhatIsFilledIn) {
   f.friction["mu_c"] = "0.3";
   f.friction["s_c"] = "";  // empty: the node keeps its s_c
   top_sim::TopCommand c;
-  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  ASSERT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_TRUE(c.set_friction);
   EXPECT_EQ(c.friction_law, "paper");
   EXPECT_EQ(c.mu_c, 0.3);
   ASSERT_EQ(c.friction_given.size(), 1u);
   EXPECT_EQ(c.friction_given[0], "mu_c");
   f.friction["s_c"] = "1.5";
-  EXPECT_NE(top_sim_rviz::to_command(f, c).find("s_c = 1.5: must be"), std::string::npos);
+  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("s_c = 1.5: must be"), std::string::npos);
   f.friction_law = "table";
-  EXPECT_NE(top_sim_rviz::to_command(f, c).find("but table"), std::string::npos);
+  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("but table"), std::string::npos);
 }
 
 TEST(PanelLogic, LawsAndParametersComeFromTheCoreTables) {
@@ -138,12 +138,12 @@ TEST(PanelLogic, MessagesAreSentences) {
   f.inclination = "0.2";
   f.spin = "150";
   top_sim::TopCommand c;
-  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  ASSERT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_EQ(top_sim_rviz::sent_message(c, "b"), "Sent to top 'b': inclination 0.2 rad and spin 150 rad/s.");
   f.friction_law = "linearized";
   f.friction["mu0"] = "0.25";
   f.friction["k"] = "1";
-  ASSERT_EQ(top_sim_rviz::to_command(f, c), "");
+  ASSERT_EQ(top_sim_rviz::fields_to_message(f, c), "");
   EXPECT_EQ(top_sim_rviz::sent_message(c, "top"),
             "Sent to top 'top': inclination 0.2 rad, spin 150 rad/s and friction law linearized with mu0 0.25 and "
             "k 1.");

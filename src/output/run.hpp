@@ -1,15 +1,15 @@
-// Shared by the command-line tools: run a scene, sample it, summarise it (docs/interfaces.md).
+// Shared by the command-line tools: run a scene, sample it, summarise the samples (docs/interfaces.md). The CSV and
+// JSON writers are in writers.hpp.
 #pragma once
 
 #include <functional>
-#include <memory>
 #include <optional>
-#include <ostream>
 #include <string>
 #include <vector>
 #include <array>
 #include <cstdint>
 
+#include "top_sim/cpu_time.hpp"  // thread_cpu_seconds, which every tool reports
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"
 
@@ -86,48 +86,7 @@ struct RunResult {
 // Advances the simulator from its current time by options.duration.
 RunResult run(Simulator& sim, const RunOptions& options);
 
-// CPU seconds of the calling thread (tools run simulations in parallel threads; std::clock counts them all).
-double thread_cpu_seconds();
-
-// The trajectory CSV (docs/interfaces.md): each number is std::to_chars' shortest text that reads back as the same
-// double (NaN as "nan"), formatted straight into a block buffer written a block at a time; flush() before checking
-// the stream.
-class CsvWriter {
- public:
-  explicit CsvWriter(std::ostream& os);
-  ~CsvWriter() { flush(); }
-  CsvWriter(const CsvWriter&) = delete;
-  CsvWriter& operator=(const CsvWriter&) = delete;
-  void header();
-  void row(const Snapshot& s);
-  void flush();
-
- private:
-  static constexpr std::size_t kBlock = 1 << 16;    // bytes per write
-  static constexpr std::size_t kField = 32;         // room for one field and its comma (a number: kNumberChars)
-  std::ostream& os_;
-  std::unique_ptr<char[]> buf_;                     // kBlock and room for one more row
-  std::size_t used_ = 0;
-};
-
-// The JSON summary of docs/interfaces.md.
-std::string summary_json(const Scene& scene, const RunResult& r);
-
-// Writes `text` to `path` ("-" = standard output, "" = nothing); false after "TOOL: FLAG = 'PATH': ..." on stderr.
-bool write_text_file(const std::string& tool, const std::string& flag, const std::string& path,
-                     const std::string& text);
-
-// Where a recorded stream came from and what only the recording's reader knows.
-struct RecordedSource {
-  std::string bag, topic, top;
-  const Scene* scene = nullptr;  // --scene: its method, model, normal force; phi_star from its stationary solver
-  std::optional<double> phi_star;
-  std::string phi_star_source, stationary_note;
-  std::uint64_t skipped = 0;  // messages whose sim_time did not advance
-};
-
-// The JSON summary of a recorded stream (top_sim_bag): top_sim_run's keys where a recording can give them; the
-// others are null and "unavailable" says why.
-std::string summary_json(const RecordedSource& source, const SampledSummary& s);
+// A fault: the core's kind, or (from a TopState, which carries only the text) its message.
+inline bool faulted(const Snapshot& s) { return s.fault != ContactFault::none || !s.fault_message.empty(); }
 
 }  // namespace top_sim
