@@ -43,18 +43,18 @@ std::vector<Sample> run(Simulator& sim, double duration) {
 }
 
 // d ln(peak tilt)/dt between consecutive windows (the envelope: nutation and precession averaged out).
-std::vector<WindowRate> window_rates(const std::vector<Sample>& s) {
+std::vector<WindowRate> window_rates(const std::vector<Sample>& s, double window = kWindow) {
   std::vector<double> mid, peak, spin;
   for (std::size_t i = 0; i < s.size();) {
     const double lo = s[i].t;
     double p = 0.0, w = 0.0;
     int n = 0;
-    for (; i < s.size() && s[i].t < lo + kWindow; ++i, ++n) {
+    for (; i < s.size() && s[i].t < lo + window; ++i, ++n) {
       p = std::max(p, s[i].tilt);
       w += s[i].spin;
     }
-    if (n < 0.9 * kWindow / kSample) break;  // a partial window at the fall
-    mid.push_back(lo + 0.5 * kWindow);
+    if (n < 0.9 * window / kSample) break;  // a partial window at the fall
+    mid.push_back(lo + 0.5 * window);
     peak.push_back(std::log(p));
     spin.push_back(w / n);
   }
@@ -186,6 +186,35 @@ TEST(WakeUp, GrowthRateChangesSignAtTheCriticalSpinAndTheTopFalls) {
   double sim_min = INFINITY;
   for (const Sample& x : s) sim_min = std::min(sim_min, x.tilt);
   note("simulated smallest tilt [rad]", sim_min);
+}
+
+// The lag is the patch's own: a smaller patch slows the spin-down (M_n ~ mu N Rbar) and the tilt's growth and decay
+// alike, so the passage is no more quasi-static. With a fixed patch of 0.3 times the Hertz radius (and the tilt
+// scaled with Rbar, the linear range) the tilt turns to growth at the same spin as with the Hertz patch.
+TEST(WakeUp, ASmallerPatchWakesAtTheSameSpin) {
+  Scene scene = load_scene(top_sim_test::scene_path("spin_down"));
+  FiniteContact& fc = scene.model.finite_contact;
+  const double a_hertz = patch_radius(fc, scene.model.top.tip_radius, scene.model.top.mass * scene.model.plane.gravity);
+  auto wake_spin = [](const Scene& sc, double scale) {
+    Simulator sim(sc);
+    const std::vector<Sample> s = run(sim, sc.duration);
+    EXPECT_EQ(sim.fault(), ContactFault::fallen) << "t = " << sim.time();
+    return sign_change_spin(window_rates(s, kWindow / scale));
+  };
+  const double w_hertz = wake_spin(scene, 1.0);
+  const double scale = 0.3;
+  fc.hertz = false;
+  fc.patch_radius = scale * a_hertz;
+  scene.initial.tilt *= scale;
+  scene.duration /= scale;
+  const double critical = locate_critical_spin(scene.model, SpinningState::upright, 0.0, 1.0, scene.initial.spin, 200).spin;
+  const double w_small = wake_spin(scene, scale);
+  note("patch radius, Hertz / smaller [m]", a_hertz);
+  note("sign change, Hertz patch [rad/s]", w_hertz);
+  note("sign change, 0.3 x patch [rad/s]", w_small);
+  note("critical spin, 0.3 x patch [rad/s]", critical);
+  EXPECT_NEAR(w_small / w_hertz, 1.0, 0.01);  // measured 79.25 and 79.26 rad/s
+  EXPECT_GT(w_small / critical, 1.2);          // still about 26 % above the frozen critical spin
 }
 
 }  // namespace
