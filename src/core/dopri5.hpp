@@ -76,7 +76,7 @@ struct Dopri5Scratch;  // the stages that live only inside one step (dopri5.cpp)
 // controlled_runge_kutta) with the same operations in the same order through the same algebra, so the same bits;
 // its per-top storage is what a step leaves for the next and for the dense output: the two states and derivatives
 // (toggled), k3 to k6 (960 bytes, 15 cache lines; odeint's objects held 2032 bytes).
-class Dopri5Stepper : public Stepper {
+class Dopri5Stepper final : public Stepper {
   using Ops = odeint::default_operations;
 
  public:

@@ -113,10 +113,11 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynam
   const bool constrained = model.normal_force == NormalForceModel::constrained;
   const bool resisting = fc.rolling_resistance != 0.0;
   const Eigen::Vector3d tau_r = resisting ? rolling_resistance_per_newton(model, b) : Eigen::Vector3d::Zero();
-  // The torque per newton's image under I'^-1 at a law (its drilling part adds nothing to A, exactly).
-  auto torque_image = [&](const PatchLaw& law) {
+  // The torque per newton's image under I'^-1 at a law; its drilling part adds nothing to A (exactly), so the first
+  // pass leaves it out.
+  auto torque_image = [&](const PatchLaw& law, bool drilling) {
     Eigen::Vector3d T = b.rho.cross(Eigen::Vector3d(-law.force_per_speed * v_t.x(), -law.force_per_speed * v_t.y(), 1.0));
-    T.z() += law.drilling;
+    if (drilling) T.z() += law.drilling;
     if (resisting) T += tau_r;
     return b.inverse_inertia(T);
   };
@@ -124,13 +125,13 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynam
   if (fc.hertz) {
     a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     if (constrained) {
-      N = constrained_normal_force(b, torque_image(patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n,
-                                                             speed_sum)), painleve);
+      const PatchLaw first = patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n, speed_sum);
+      N = constrained_normal_force(b, torque_image(first, false), painleve);
       a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     }
   }
   const PatchLaw law = patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n, speed_sum);
-  const Eigen::Vector3d Ii_T = torque_image(law);
+  const Eigen::Vector3d Ii_T = torque_image(law, true);
   if (constrained)
     N = constrained_normal_force(b, Ii_T, painleve);
   else
@@ -267,32 +268,28 @@ template <bool kFinite>
   }
 }
 
-// Inlined into its callers, as the one switch it replaces was (a call here costs 26 instructions per right-hand side).
-[[gnu::always_inline]] inline void evaluate_motion(const Model& model, ContactMode mode, const StateVector& y,
-                                                   Dynamics& out, double& painleve) {
-  if (point_contact(model))
-    evaluate_motion_in<false>(mode, model, y, out, painleve);
-  else
-    evaluate_motion_in<true>(mode, model, y, out, painleve);
-}
-
 }  // namespace
 
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
   // A point contact never writes the finite contact's fields: clear what an earlier patch left (derivative()
   // needs no clearing, its Dynamics is fresh).
-  out.patch_radius = out.drilling_torque = 0.0;
-  out.couple.setZero();
-  out.air_force.setZero();
-  out.air_torque.setZero();
+  const bool point = point_contact(model);
   ContactForceRecord record;
-  evaluate_motion(model, mode, y, out, record.painleve);
+  if (point) {
+    out.patch_radius = out.drilling_torque = 0.0;
+    out.couple.setZero();
+    out.air_force.setZero();
+    out.air_torque.setZero();
+    evaluate_motion_in<false>(mode, model, y, out, record.painleve);
+  } else {
+    evaluate_motion_in<true>(mode, model, y, out, record.painleve);
+  }
   record.force = out.contact_force;
   record.drilling_torque = out.drilling_torque;
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
   // A slipping contact that may stick: the stick function needs the rolling force at this state.
   const double mg = model.top.mass * model.plane.gravity;
-  if (point_contact(model)) {
+  if (point) {
     const Eigen::Vector3d F = rolling_force(contact_response(model, y));
     const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / mg;
     out.margins.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
@@ -330,9 +327,10 @@ double jellett(const Model& model, const StateVector& y) {
 
 namespace {
 
+// Inlined into model_derivative: one call less per right-hand side.
 template <bool kFinite>
-void derivative_in(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
-                   ContactForceRecord* record) {
+[[gnu::always_inline]] inline void derivative_in(const Model& model, ContactMode mode, const StateVector& y,
+                                                 StateVector& dydt, ContactForceRecord* record) {
   MotionOut<kFinite> dyn;
   double painleve;
   evaluate_motion_in<kFinite>(mode, model, y, dyn, painleve);
@@ -392,7 +390,7 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
       return !(static_friction(model) > 0.0 && has_contact_modes(model));  // else the stick function is missing
     case ContactMode::rolling:
       mg.lift = r.force.z();
-      if (point_contact(model))
+      if (!model.finite_contact.has_patch())  // mu_s F_n - |F_t|: rolling resistance and air leave the cone
         mg.transfer = (static_friction(model) * r.force.z() - std::hypot(r.force.x(), r.force.y())) /
                       (model.top.mass * model.plane.gravity);
       else

@@ -1,4 +1,6 @@
 // The scene's method with rosenbrock4 across a stiff layer.
+#include "dopri5.hpp"  // visible here so the calls through active() can be devirtualised (dopri5 is the usual primary)
+#include "rosenbrock4.hpp"
 #include "steppers.hpp"
 
 namespace top_sim {

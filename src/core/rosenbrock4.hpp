@@ -33,7 +33,7 @@ class PhaseFreeRosenbrock4 : public odeint::rosenbrock4<double> {
   std::uint64_t* attempts_;
 };
 
-class Rosenbrock4Stepper : public Stepper {
+class Rosenbrock4Stepper final : public Stepper {
   using Controller = odeint::rosenbrock4_controller<PhaseFreeRosenbrock4>;
   using Dense = odeint::rosenbrock4_dense_output<Controller>;
 
