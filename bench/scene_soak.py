@@ -114,7 +114,7 @@ def main():
     ap.add_argument('--work', help='where summaries and time reports go (default: a new /tmp directory)')
     args = ap.parse_args()
     if not os.access(args.bin, os.X_OK):
-        sys.exit(f'scene_soak: {args.bin} is not an executable: build it first (README, plain CMake build)')
+        sys.exit(f'scene_soak: {args.bin} is not an executable: build it first (docs/building.md, plain CMake build)')
     work = args.work or tempfile.mkdtemp(prefix='top_sim_scene_soak.')
     os.makedirs(work, exist_ok=True)
     runs = [(s, args.duration) for s in scene_list(args)]

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # One command from a fresh Debian bookworm: install the packages, build everything, run the main job.
-# Arguments go to scripts/run_main.sh (and so to top_sim_run).
+# Arguments go to scripts/run_main.sh (and so to roslaunch, e.g. rviz:=true).
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 

@@ -2,6 +2,7 @@
 # Runs the whole test suite, installing and building first if needed:
 #   1. the plain CMake build of the core (-DTOP_SIM_ROS=OFF, in $TOP_SIM_BUILD): GoogleTest, pytest of the Python
 #      module and the install/find_package check, through ctest;
+#   1b. the core's GoogleTest suite again under AddressSanitizer + UBSan (TOP_SIM_SANITIZERS=0 skips it);
 #   2. the catkin package (node, messages): its gtests and rostests, through catkin's run_tests.
 # Prints every test case, a summary, and as the last line `N passed, N failed`.
 # Exit 0 only if the builds succeeded, at least one test ran, and no test failed or errored.

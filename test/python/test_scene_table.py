@@ -1,4 +1,4 @@
-"""README.md's table of the shipped scenes is generated (scripts/scene_table.py) from each scene's description:
+"""docs/scenes.md's table of the shipped scenes is generated (scripts/scene_table.py) from each scene's description:
 the repository's table is up to date, and the check fails when a scene is added or its description changes
 without regenerating, or when a scene has no one-line description."""
 import os
@@ -15,19 +15,20 @@ def check(repo):
 
 
 def copy_of_repo(tmp_path):
-    """README.md and config/scenes/ of the repository in tmp_path (what the script reads)."""
-    shutil.copy(os.path.join(REPO, 'README.md'), tmp_path / 'README.md')
+    """docs/scenes.md and config/scenes/ of the repository in tmp_path (what the script reads)."""
+    (tmp_path / 'docs').mkdir()
+    shutil.copy(os.path.join(REPO, 'docs', 'scenes.md'), tmp_path / 'docs' / 'scenes.md')
     shutil.copytree(os.path.join(REPO, 'config', 'scenes'), tmp_path / 'config' / 'scenes')
     return tmp_path
 
 
-def test_readme_table_is_up_to_date():
+def test_scenes_table_is_up_to_date():
     r = check(REPO)
     assert r.returncode == 0, r.stderr
-    with open(os.path.join(REPO, 'README.md')) as f:
-        readme = f.read()
+    with open(os.path.join(REPO, 'docs', 'scenes.md')) as f:
+        page = f.read()
     for name in os.listdir(os.path.join(REPO, 'config', 'scenes')):
-        assert '| `%s` |' % name[:-len('.yaml')] in readme, name
+        assert '| `%s` |' % name[:-len('.yaml')] in page, name
 
 
 def test_check_fails_when_a_scene_is_added_or_its_description_changes(tmp_path):
