@@ -14,7 +14,7 @@ from diagnostic_msgs.msg import DiagnosticArray
 from std_msgs.msg import Float64
 
 from top_sim.msg import TopState
-from top_sim.srv import Kill, ListTops
+from top_sim.srv import Kill, ListTops, Spawn
 
 NODE = '/top_sim'
 TOPS = ['top', 'a', 'b', 'c', 'd', 'e', 'f', 'g']
@@ -42,11 +42,14 @@ def wait_for(pred, timeout):
 
 
 class BackgroundTopics(unittest.TestCase):
+    """Any order: the kill test spawns its top again, so the others see every top of the launch."""
+
     @classmethod
     def setUpClass(cls):
         rospy.wait_for_service(NODE + '/list', timeout=60.0)
         cls.list = rospy.ServiceProxy(NODE + '/list', ListTops)
         cls.kill = rospy.ServiceProxy(NODE + '/kill', Kill)
+        cls.spawn = rospy.ServiceProxy(NODE + '/spawn', Spawn)
         cls.pending = None
         cls.lock = threading.Lock()
         cls.diag = rospy.Subscriber('/diagnostics', DiagnosticArray, cls.on_diag, queue_size=10)
@@ -64,12 +67,12 @@ class BackgroundTopics(unittest.TestCase):
         want_subs = {prefix(n) + t for n in names for t in ('inclination', 'spin', 'command')}
         return sorted((want_pubs - pubs) | (want_subs - subs))
 
-    def test_1_every_top_gets_its_topics(self):
+    def test_every_top_gets_its_topics(self):
         self.assertEqual(sorted(self.list().names), sorted(TOPS))
         self.assertTrue(wait_for(lambda: not self.missing(TOPS), 60.0), 'never advertised: %s' % self.missing(TOPS))
         self.assertTrue(wait_for(lambda: self.pending == 0, 30.0), 'diagnostics: %s = %s' % (PENDING, self.pending))
 
-    def test_2_background_top_takes_commands(self):
+    def test_background_top_takes_commands(self):
         self.assertTrue(wait_for(lambda: not self.missing(['g']), 60.0))
         got = threading.Event()
         sub = rospy.Subscriber(prefix('g') + 'top_state', TopState,
@@ -86,7 +89,7 @@ class BackgroundTopics(unittest.TestCase):
             sub.unregister()
             pub.unregister()
 
-    def test_3_kill_background_top(self):
+    def test_kill_background_top_unregisters_its_topics(self):
         self.assertTrue(wait_for(lambda: not self.missing(['f']), 60.0))
         r = self.kill('f')
         self.assertTrue(r.success, r.message)
@@ -96,6 +99,8 @@ class BackgroundTopics(unittest.TestCase):
             set(prefix('f') + t for t in ('top_state', 'path', 'inclination', 'spin', 'command')) -
             set(self.missing(['f']))))
         self.assertNotIn('f', self.list().names)
+        r = self.spawn('f', '')  # back, for the tests that run after this one
+        self.assertTrue(r.success, r.message)
 
 
 if __name__ == '__main__':

@@ -43,6 +43,8 @@ class Latest(object):
 
 
 class Tops(unittest.TestCase):
+    """Each test spawns the tops it needs under its own names and kills them at its end: any order, any subset."""
+
     @classmethod
     def setUpClass(cls):
         for s in ('spawn', 'kill', 'list'):
@@ -54,79 +56,88 @@ class Tops(unittest.TestCase):
     def names(self):
         return list(self.list().names)
 
-    def test_1_spawn_list_topics_frames(self):
-        self.assertEqual(self.names(), ['top'])
-        r = self.spawn('a', '')
+    def spawned(self, name, scene=''):
+        r = self.spawn(name, scene)
         self.assertTrue(r.success, r.message)
-        r = self.spawn('b', 'top: aluminium\nfriction: pmma\ninitial: {spin: 150.0, position: [0.2, 0.0]}\n')
-        self.assertTrue(r.success, r.message)
-        self.assertEqual(self.names(), ['top', 'a', 'b'])
-        a = Latest(NODE + '/a/top_state', TopState).wait()
-        b = Latest(NODE + '/b/top_state', TopState).wait()
+        self.addCleanup(self.kill, name)  # a kill of a top already gone is refused, harmlessly
+        return name
+
+    def test_spawn_list_topics_frames(self):
+        a = self.spawned('a1')
+        b = self.spawned('b1', 'top: aluminium\nfriction: pmma\ninitial: {spin: 150.0, position: [0.2, 0.0]}\n')
+        names = self.names()
+        self.assertEqual(names[0], 'top')  # the launch-time top first, then the spawned ones in spawn order
+        self.assertLess(names.index(a), names.index(b))
+        sa = Latest(NODE + '/a1/top_state', TopState).wait()
+        sb = Latest(NODE + '/b1/top_state', TopState).wait()
         top = Latest(NODE + '/top_state', TopState).wait()
-        self.assertIsNotNone(a, 'no a/top_state')
-        self.assertIsNotNone(b, 'no b/top_state')
-        self.assertEqual(a.header.frame_id, 'a/plane')
-        self.assertEqual(b.header.frame_id, 'b/plane')
-        self.assertAlmostEqual(a.spin, top.spin, delta=1e-6 * abs(top.spin) + 1.0)  # 'a' runs the node's scene
-        self.assertAlmostEqual(b.spin, 150.0, delta=1.0)
+        self.assertIsNotNone(sa, 'no a1/top_state')
+        self.assertIsNotNone(sb, 'no b1/top_state')
+        self.assertEqual(sa.header.frame_id, 'a1/plane')
+        self.assertEqual(sb.header.frame_id, 'b1/plane')
+        self.assertAlmostEqual(sa.spin, top.spin, delta=1e-6 * abs(top.spin) + 1.0)  # a1 runs the node's scene
+        self.assertAlmostEqual(sb.spin, 150.0, delta=1.0)
         buf = tf2_ros.Buffer()
         tf2_ros.TransformListener(buf)
-        for frame in ('a/top', 'b/top', 'top'):
+        for frame in ('a1/top', 'b1/top', 'top'):
             t = buf.lookup_transform('world', frame, rospy.Time(0), rospy.Duration(10.0))
             self.assertTrue(abs(t.transform.rotation.w) <= 1.0)
-        # b starts 0.2 m across the slope from a (the scenes' initial positions), in frames that coincide at equal alpha
-        ta = buf.lookup_transform('a/plane', 'a/top', rospy.Time(0), rospy.Duration(5.0)).transform.translation
-        tb = buf.lookup_transform('b/plane', 'b/top', rospy.Time(0), rospy.Duration(5.0)).transform.translation
+        # b1 starts 0.2 m across the slope from a1 (the scenes' initial positions), in frames that coincide at equal
+        # alpha
+        ta = buf.lookup_transform('a1/plane', 'a1/top', rospy.Time(0), rospy.Duration(5.0)).transform.translation
+        tb = buf.lookup_transform('b1/plane', 'b1/top', rospy.Time(0), rospy.Duration(5.0)).transform.translation
         self.assertAlmostEqual(tb.x - ta.x, 0.2, delta=0.05)
 
-    def test_2_array_and_markers_carry_every_top(self):
-        arr = Latest(NODE + '/top_states', TopStateArray).wait(lambda m: len(m.names) == len(self.names()))
+    def test_array_and_markers_carry_every_top(self):
+        self.spawned('a2')
+        self.spawned('b2')
+        names = self.names()
+        arr = Latest(NODE + '/top_states', TopStateArray).wait(lambda m: list(m.names) == names)
         self.assertIsNotNone(arr, 'no top_states with every top')
-        self.assertEqual(list(arr.names), self.names())
         self.assertEqual(len(arr.states), len(arr.names))
         for name, s in zip(arr.names, arr.states):
             self.assertEqual(s.header.frame_id, 'plane' if name == 'top' else name + '/plane')
         markers = Latest(NODE + '/markers', MarkerArray).wait(
-            lambda m: any(k.ns.startswith('b/') for k in m.markers))
-        self.assertIsNotNone(markers, 'no markers of spawned top b')
-        spaces = set(k.ns.split('/')[0] for k in markers.markers if '/' in k.ns)
-        self.assertTrue({'a', 'b'} <= spaces, spaces)
+            lambda m: {'a2', 'b2'} <= set(k.ns.split('/')[0] for k in m.markers if '/' in k.ns))
+        self.assertIsNotNone(markers, 'no markers of spawned tops a2 and b2')
 
-    def test_3_commands_reach_only_their_top(self):
+    def test_commands_reach_only_their_top(self):
+        self.spawned('a3')
         top = Latest(NODE + '/top_state', TopState)
         before = top.wait().spin
-        pub = rospy.Publisher(NODE + '/a/spin', Float64, queue_size=1, latch=True)
+        pub = rospy.Publisher(NODE + '/a3/spin', Float64, queue_size=1, latch=True)
         pub.publish(Float64(333.0))
-        a = Latest(NODE + '/a/top_state', TopState).wait(lambda m: abs(m.spin - 333.0) < 1.0)
-        self.assertIsNotNone(a, 'a/spin not applied')
+        a = Latest(NODE + '/a3/top_state', TopState).wait(lambda m: abs(m.spin - 333.0) < 1.0)
+        self.assertIsNotNone(a, 'a3/spin not applied')
         self.assertAlmostEqual(top.wait().spin, before, delta=1e-3 * abs(before))
 
-    def test_4_bad_names_and_scenes_are_refused_others_untouched(self):
+    def test_bad_names_and_scenes_are_refused_others_untouched(self):
+        self.spawned('a4')
         names = self.names()
-        cases = [('', 'empty'), ('top', 'taken'), ('a', 'taken'), ('1x', 'not a base ROS name'),
-                 ('x/y', 'not a base ROS name'), ('c', 'given twice'), ('d', 'not valid YAML'),
-                 ('e', 'unknown key')]
-        scenes = {'c': 'top: aluminium\ntop: steel\nfriction: pmma\n', 'd': 'top: [unclosed',
-                  'e': 'top: aluminium\nfriction: pmma\nspin: 3\n'}
+        cases = [('', 'empty'), ('top', 'taken'), ('a4', 'taken'), ('1x', 'not a base ROS name'),
+                 ('x/y', 'not a base ROS name'), ('c4', 'given twice'), ('d4', 'not valid YAML'),
+                 ('e4', 'unknown key')]
+        scenes = {'c4': 'top: aluminium\ntop: steel\nfriction: pmma\n', 'd4': 'top: [unclosed',
+                  'e4': 'top: aluminium\nfriction: pmma\nspin: 3\n'}
         for name, part in cases:
             r = self.spawn(name, scenes.get(name, ''))
             self.assertFalse(r.success, name)
             self.assertIn(part, r.message, name)
         self.assertEqual(self.names(), names)
-        self.assertIsNotNone(Latest(NODE + '/a/top_state', TopState).wait(), 'a stopped publishing')
+        self.assertIsNotNone(Latest(NODE + '/a4/top_state', TopState).wait(), 'a4 stopped publishing')
 
-    def test_5_kill(self):
+    def test_kill_refuses_the_launch_top_and_unknown_names_and_frees_the_name(self):
+        k = self.spawned('k5')
         r = self.kill('top')
         self.assertFalse(r.success)
         self.assertIn('launch-time top', r.message)
         r = self.kill('zzz')
         self.assertFalse(r.success)
         self.assertIn('no top named', r.message)
-        r = self.kill('a')
+        r = self.kill(k)
         self.assertTrue(r.success, r.message)
-        self.assertEqual(self.names(), ['top', 'b'])
-        r = self.spawn('a', '')  # the name is free again
+        self.assertNotIn(k, self.names())
+        r = self.spawn(k, '')  # the name is free again (the first cleanup kills it)
         self.assertTrue(r.success, r.message)
 
 
