@@ -15,7 +15,7 @@ from rosgraph_msgs.msg import Clock
 from std_srvs.srv import Trigger
 
 from top_sim.msg import TopState
-from top_sim.srv import Spawn
+from top_sim.srv import Kill, Spawn
 
 from clock_util import (NS, Stream, assert_follows, backward_steps, clock_value, header_stamp, not_in,
                         wait_for)
@@ -42,7 +42,7 @@ class ClockFollower(unittest.TestCase):
         cls.start_wall = time.time()
         wait_for(lambda: rospy.Time.now() > rospy.Time(0), 60.0, "the node's /clock")
 
-    def test_1_listener_follows_the_simulated_clock(self):
+    def test_listener_follows_the_simulated_clock(self):
         state = Stream(NODE + '/top_state', TopState, state_fields)
         clock = Stream('/clock', Clock, clock_value)
         wait_for(lambda: len(state.values()) > 10, 30.0, 'top_state')
@@ -68,7 +68,7 @@ class ClockFollower(unittest.TestCase):
         self.assertEqual(missing, [], '/clock values that are not top_state stamps')
         assert_follows(self, state.ahead(), TYPICAL, TOLERANCE, 'top_state')
 
-    def test_2_tf_lookup_at_now(self):
+    def test_tf_lookup_at_now(self):
         buf = tf2_ros.Buffer()
         tf2_ros.TransformListener(buf)
         buf.lookup_transform('world', 'top', rospy.Time(0), rospy.Duration(10.0))
@@ -93,9 +93,10 @@ class ClockFollower(unittest.TestCase):
         self.assertGreater(at_once + waited, 50)
         self.assertEqual(failed, [])
 
-    def test_3_reset_keeps_clock_and_stamps_monotonic(self):
+    def test_reset_keeps_clock_and_stamps_monotonic(self):
         r = rospy.ServiceProxy(NODE + '/spawn', Spawn)('b', '')
         self.assertTrue(r.success, r.message)
+        self.addCleanup(rospy.ServiceProxy(NODE + '/kill', Kill), 'b')  # the other tests see the launch's tops only
         reset = rospy.ServiceProxy(NODE + '/reset', Trigger)
         clock = Stream('/clock', Clock, clock_value)
         tops = {name: Stream(NODE + '/' + prefix + 'top_state', TopState, state_fields)

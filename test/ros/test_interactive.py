@@ -74,7 +74,7 @@ class Interactive(unittest.TestCase):
             time.sleep(0.2)
         self.fail('no update_full with the markers wanted within %g s' % timeout)
 
-    def test_0_every_control_has_a_description(self):
+    def test_every_control_has_a_description(self):
         markers = self.markers_when(lambda ms: MARKER in ms)
         self.assertEqual(len(markers[MARKER].controls), 3)
         self.assertEqual(empty_texts(markers[MARKER]), [])
@@ -87,7 +87,7 @@ class Interactive(unittest.TestCase):
             rospy.ServiceProxy('/top_sim/kill', Kill)('second')
         self.markers_when(lambda ms: 'second/controls' not in ms)
 
-    def test_1_marker_then_ring_arrow_menu(self):
+    def test_marker_then_ring_arrow_menu(self):
         update = rospy.wait_for_message('/top_sim_interactive/update', InteractiveMarkerUpdate, timeout=30.0)
         self.assertIsNotNone(update)
         self.assertTrue(self.wait(lambda s: True), 'no TopState')

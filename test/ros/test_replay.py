@@ -114,7 +114,7 @@ class Replay(unittest.TestCase):
         self.assertLessEqual(early, 5, what)
         assert_follows(self, ahead, TYPICAL, TOLERANCE, what)
 
-    def test_1_bag_holds_the_simulation_clock(self):
+    def test_bag_holds_the_simulation_clock(self):
         rec = self.recorded
         n = {t: len(v) for t, v in rec.items()}
         rospy.loginfo('bag: %s; TopState record time - stamp from %.4f to %.4f s', n, min(self.late) * NS,
@@ -130,7 +130,7 @@ class Replay(unittest.TestCase):
             self.assertGreaterEqual(inside, 0.5 * RATE * SECONDS)
             self.assertEqual(missing, [], what)
 
-    def test_2_play_replays_the_recorded_clock_and_stamps(self):
+    def test_play_replays_the_recorded_clock_and_stamps(self):
         got = self.play()
         for topic in (STATE, '/tf'):
             self.assertEqual(got[topic].values(), self.recorded[topic], topic + ': replayed values differ')
@@ -147,7 +147,7 @@ class Replay(unittest.TestCase):
         self.assertGreaterEqual(len(clock), 0.5 * len(recorded))
         self.assert_stamps_follow_clock(got, 'rosbag play')
 
-    def test_3_play_clock_without_the_recorded_clock(self):
+    def test_play_clock_without_the_recorded_clock(self):
         got = self.play('--clock', '--topics', STATE, '/tf')
         self.assertEqual(got[STATE].values(), self.recorded[STATE])
         clock = got['/clock'].values()
@@ -156,7 +156,7 @@ class Replay(unittest.TestCase):
         self.assertEqual(backward_steps(clock), [], "rosbag's clock went back")
         self.assert_stamps_follow_clock(got, 'rosbag play --clock, /clock not played')
 
-    def test_4_play_clock_with_the_recorded_clock_goes_back(self):
+    def test_play_clock_with_the_recorded_clock_goes_back(self):
         # The pitfall the docs describe: rosbag's clock (record times) interleaved with the recorded one.
         clock = self.play('--clock')['/clock'].values()
         back = backward_steps(clock)

@@ -27,12 +27,12 @@ def wait_state(topic, pred, timeout=20.0):
 
 
 class ResetStart(unittest.TestCase):
-    def test_1_starts_at_the_launch_values(self):
+    def test_starts_at_the_launch_values(self):
         m = wait_state('/top_sim/top_state', lambda m: True)
         self.assertIsNotNone(m, 'no TopState')
         self.assertAlmostEqual(m.alpha, 0.2, places=12)
 
-    def test_2_reset_returns_to_the_launch_values(self):
+    def test_reset_returns_to_the_launch_values(self):
         pub = rospy.Publisher('/top_sim/inclination', Float64, queue_size=1, latch=True)
         pub.publish(Float64(0.05))
         self.assertIsNotNone(wait_state('/top_sim/top_state', lambda m: abs(m.alpha - 0.05) < 1e-12),
@@ -48,7 +48,7 @@ class ResetStart(unittest.TestCase):
         self.assertAlmostEqual(m.alpha, 0.2, places=12)
         self.assertLess(abs(m.spin - 150.0), 1.5, 'spin %g after reset: must be the launch value 150' % m.spin)
 
-    def test_3_no_parameters_runs_the_default_scene(self):
+    def test_no_parameters_runs_the_default_scene(self):
         m = wait_state('/bare/top_state', lambda m: m.sim_time > 0.1)
         self.assertIsNotNone(m, 'a node with no parameters must run the default scene')
         self.assertAlmostEqual(m.alpha, 0.1, places=12)  # config/scenes/default.yaml
