@@ -1,0 +1,97 @@
+// Validation of run-time commands (command.hpp): each refusal names the field, the value and the allowed range.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <string>
+
+#include "test_util.hpp"
+#include "top_sim/command.hpp"
+#include "top_sim/limits.hpp"
+#include "top_sim/scene.hpp"
+
+using namespace top_sim;
+
+namespace {
+
+Model model_of(const std::string& scene) { return load_scene(top_sim_test::scene_path(scene)).model; }
+
+::testing::AssertionResult refused(const Command& c, const Model& m, const std::string& field,
+                                   const std::string& range_part) {
+  const std::string e = validate(c, m);
+  if (e.empty()) return ::testing::AssertionFailure() << field << ": accepted";
+  if (e.find(field) == std::string::npos || e.find(range_part) == std::string::npos)
+    return ::testing::AssertionFailure() << "message '" << e << "' lacks '" << field << "' or '" << range_part << "'";
+  return ::testing::AssertionSuccess();
+}
+
+}  // namespace
+
+TEST(Command, AnEmptyCommandIsValidForEveryKindOfModel) {
+  for (const char* scene : {"default", "coulomb", "gyro_reversal", "tippe_top", "spin_down"})
+    EXPECT_EQ(validate(Command{}, model_of(scene)), "") << scene;
+}
+
+TEST(Command, InclinationMustBeFiniteAndBelowAQuarterTurn) {
+  const Model m = model_of("default");
+  Command c;
+  c.inclination = 0.3;
+  EXPECT_EQ(validate(c, m), "");
+  for (double bad : {M_PI / 2, -M_PI / 2, double(NAN), double(INFINITY)}) {
+    c.inclination = bad;
+    EXPECT_TRUE(refused(c, m, "inclination", "|alpha| < pi/2")) << bad;
+  }
+}
+
+TEST(Command, SpinsWithinTheSpinLimitAndRotorFieldsOnlyWithARotor) {
+  const Model plain = model_of("default"), gyro = model_of("gyro_reversal");
+  Command c;
+  c.spin = -kMaxSpin;
+  EXPECT_EQ(validate(c, plain), "");
+  c.spin = 1.01 * kMaxSpin;
+  EXPECT_TRUE(refused(c, plain, "spin", "spin limit"));
+  c = Command{};
+  c.rotor_spin = 100.0;
+  EXPECT_TRUE(refused(c, plain, "rotor_spin", "no rotor"));
+  EXPECT_EQ(validate(c, gyro), "");
+  c = Command{};
+  c.rotor_coupling = -1e-9;
+  EXPECT_TRUE(refused(c, gyro, "rotor_coupling", ">= 0"));
+}
+
+TEST(Command, RestitutionInTheUnitIntervalAndOnlyWithContactModes) {
+  const Model m = model_of("hopping");
+  Command c;
+  c.restitution = 0.5;
+  EXPECT_EQ(validate(c, m), "");
+  c.restitution = 1.5;
+  EXPECT_TRUE(refused(c, m, "restitution", "in [0, 1]"));
+}
+
+// mu_s must stay at or above mu(0) of the law in force after the command.
+TEST(Command, StaticFrictionNotBelowTheLawsValueAtZeroSlip) {
+  const Model m = model_of("coulomb");
+  Command c;
+  c.static_friction = 0.5 * friction_coefficient(m.friction, 0.0);
+  EXPECT_TRUE(refused(c, m, "static_friction", ">= mu(0)"));
+  c.static_friction = 2.0 * friction_coefficient(m.friction, 0.0);
+  EXPECT_EQ(validate(c, m), "");
+}
+
+// physics.md section 12: each finite-contact field >= 0 and finite; none > 0 under the reduced model.
+TEST(Command, FiniteContactFieldsNonNegativeAndNotUnderTheReducedModel) {
+  const Model full = model_of("default");
+  for (double bad : {-1e-4, double(NAN), double(INFINITY)}) {
+    Command c;
+    c.patch_radius = bad;
+    EXPECT_TRUE(refused(c, full, "patch_radius", ">= 0 and finite")) << bad;
+    c = Command{};
+    c.drag = bad;
+    EXPECT_TRUE(refused(c, full, "drag", ">= 0 and finite")) << bad;
+  }
+  Command c;
+  c.rolling_resistance = 1e-5;
+  EXPECT_EQ(validate(c, full), "");
+  Model reduced = full;
+  reduced.kind = ModelKind::adiabatic;
+  EXPECT_TRUE(refused(c, reduced, "rolling_resistance", "adiabatic or auto"));
+}
