@@ -2,7 +2,14 @@
 // refuse or stop at them with a message that names them (docs/reliability.md).
 #pragma once
 
+#include <cmath>
+
 namespace top_sim {
+
+// Largest |inclination| alpha [rad], excluded: at pi/2 the plane is a wall and carries no normal force. Scenes,
+// events, commands and the tools (sweep, stability, fit) test against it; false for NaN.
+constexpr double kMaxInclination = M_PI / 2;
+inline bool admissible_inclination(double alpha) { return std::abs(alpha) < kMaxInclination; }
 
 // Smallest integration step [s]: below it a step no longer changes t (double resolution at t ~ 1e4 s).
 constexpr double kMinStep = 1.0e-12;

@@ -7,6 +7,7 @@
 
 #include "arguments.hpp"
 #include "top_sim/friction.hpp"
+#include "top_sim/limits.hpp"
 
 namespace top_sim {
 
@@ -123,7 +124,7 @@ using Value = std::function<std::string()>;  // the flag's value (throws BadArgu
 // One of the grid's flags into `o`; false when `flag` is not a grid flag.
 bool read_grid_option(const std::string& a, const Value& value, SweepOptions& o) {
   if (a == "--alpha") {
-    o.alphas = number_list(a, value(), [](double v) { return v > 0.0 && v < M_PI / 2; }, "in (0, pi/2) [rad]");
+    o.alphas = number_list(a, value(), [](double v) { return v > 0.0 && top_sim::admissible_inclination(v); }, "in (0, pi/2) [rad]");
   } else if (a == "--spin") {
     o.spins = number_list(a, value(), [](double v) { return v != 0.0 && std::abs(v) <= 1e5; },
                           "nonzero with |spin| <= 1e5 [rad/s]");

@@ -97,7 +97,7 @@ struct Arguments {
   std::optional<SpinningState> state;
 };
 
-bool admissible_alpha(double a) { return a > 0.0 && a < M_PI / 2; }
+bool admissible_alpha(double a) { return a > 0.0 && top_sim::admissible_inclination(a); }
 bool admissible_spin(double w) { return std::abs(w) <= top_sim::kMaxSpin; }
 
 // Reads the command line (throws BadArgument); false when it asked for --help.

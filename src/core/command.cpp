@@ -36,7 +36,7 @@ std::string validate_finite_contact(const Command& c, const Model& model) {
 std::string validate_in_kind(const Command& c, const Model& model) {
   if (c.inclination) {
     const double a = *c.inclination;
-    if (!std::isfinite(a) || std::abs(a) >= M_PI / 2) return bad("inclination", a, "finite with |alpha| < pi/2 rad");
+    if (!admissible_inclination(a)) return bad("inclination", a, "finite with |alpha| < pi/2 rad");
   }
   static const std::string spin_range = "finite with |spin| <= " + format_number(kMaxSpin) + " [rad/s] (top_sim's spin limit)";
   if (c.spin && !(std::abs(*c.spin) <= kMaxSpin)) return bad("spin", *c.spin, spin_range.c_str());

@@ -11,6 +11,7 @@
 
 #include "top_sim/format.hpp"
 #include "top_sim/simulator.hpp"
+#include "top_sim/limits.hpp"
 
 namespace top_sim {
 
@@ -165,7 +166,7 @@ std::vector<SlipPoint> slip_points(const std::vector<StationaryMeasurement>& dat
     if (given && !(d.sigma_alpha > 0.0 && d.sigma_phi > 0.0 && std::isfinite(d.sigma_alpha) && std::isfinite(d.sigma_phi)))
       throw FitError(row + ": sigma_alpha and sigma_phi must both be finite and > 0");
     // phi slightly below 0 is a noisy measurement near alpha = 0 (s < 0 is fitted as it is).
-    if (!(d.alpha > -M_PI_2 && d.alpha < M_PI_2) || !(d.phi > -M_PI_2 && d.phi <= M_PI))
+    if (!admissible_inclination(d.alpha) || !(d.phi > -M_PI_2 && d.phi <= M_PI))
       throw FitError(row + ": alpha must be in (-pi/2, pi/2) and phi in (-pi/2, pi]");
     with_sigma += given;
   }

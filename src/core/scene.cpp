@@ -232,7 +232,7 @@ Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin
 
 Plane read_plane(Section& root, const std::string& file) {
   Section p(root.raw("plane"), file, "plane");
-  const double alpha = p.number("inclination", 0.1, [](double v) { return std::abs(v) < M_PI / 2; },
+  const double alpha = p.number("inclination", 0.1, admissible_inclination,
                                 "in (-pi/2, pi/2) [rad]");
   const double g = p.number("gravity", 9.81, positive, "> 0 [m/s^2]");
   p.finish();
@@ -384,7 +384,7 @@ ScriptedEvent read_event(const YAML::Node& node, const std::string& file, const 
                      ">= 0 and >= the previous event's t = " + fmt(previous) + " [s]");
   last_t = event.t;
   Command& c = event.command;
-  if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, [](double v) { return std::abs(v) < M_PI / 2; }, "in (-pi/2, pi/2) [rad]");
+  if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, admissible_inclination, "in (-pi/2, pi/2) [rad]");
   if (e.has("spin")) c.spin = e.number("spin", 0.0, spin_range, kSpinRange);
   if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, spin_range, kSpinRange);
   if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
