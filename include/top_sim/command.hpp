@@ -6,6 +6,7 @@
 
 #include "top_sim/friction.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
 
 namespace top_sim {
 
@@ -30,6 +31,10 @@ struct Command {
            !patch_radius && !rolling_resistance && !spin_drag && !drag;
   }
 };
+
+// Applies each set field to the model and the state (physics.md section 8: the plane-frame state is kept; a spin
+// change keeps the transverse angular velocity and the rotor's absolute spin). Validate first.
+void apply_command(const Command& command, Model& model, StateVector& y);
 
 // Empty when the command can be applied to this model, else "field = value: allowed range".
 std::string validate(const Command& command, const Model& model);

@@ -110,7 +110,6 @@ class Simulator {
 
  private:
   void restart_stepper(bool rebase_energy);
-  void apply_now(const Command& c);
   void apply_pending();
   bool scene_event_due() const;  // the scene's next event is at or before t_
   void schedule_next_event();    // next_event_t_ from next_event_ and t_origin_

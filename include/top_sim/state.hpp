@@ -33,6 +33,9 @@ inline Eigen::Vector3d angular_velocity(const StateVector& y) {
   return {y[idx::omega], y[idx::omega + 1], y[idx::omega + 2]};
 }
 
+// The shell's spin omega . f_hat [rad/s] (f_hat normalised here: a stepped state drifts off unit length).
+inline double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
+
 inline void set_position(StateVector& y, const Eigen::Vector2d& p) { y[idx::x] = p.x(); y[idx::x + 1] = p.y(); }
 inline void set_velocity(StateVector& y, const Eigen::Vector2d& u) { y[idx::u] = u.x(); y[idx::u + 1] = u.y(); }
 inline void set_velocity3(StateVector& y, const Eigen::Vector3d& u) {

@@ -45,7 +45,7 @@ void adiabatic_derivative(const Model& model, const StateVector& y, StateVector&
 }
 
 void project_to_stationary(const Model& model, StateVector& y) {
-  const double spin = angular_velocity(y).dot(figure_axis(y).normalized());
+  const double spin = shell_spin(y);
   const StationaryState st = stationary_state(model, spin);
   if (!st.exists) return;
   set_velocity(y, st.velocity);

@@ -15,7 +15,6 @@ namespace top_sim {
 
 namespace {
 
-double shell_spin_of(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
 
 // Index of the eigenvalue nearest `target`.
 Eigen::Index nearest(const Eigen::VectorXcd& values, Eigenvalue target) {
@@ -51,7 +50,7 @@ Reduction analyse_reduction(const Model& model_in, const StateVector& y) {
   Model model = model_in;
   model.kind = ModelKind::full;
   Reduction r;
-  r.spin = shell_spin_of(y);
+  r.spin = shell_spin(y);
   const double rotor_spin = model.top.has_rotor ? r.spin + y[idx::nu] : 0.0;
   const StationaryState st = stationary_state(model, r.spin);
   const StabilityResult s = stability_at(model, st, r.spin, rotor_spin);
@@ -83,7 +82,7 @@ Reduction analyse_reduction(const Model& model_in, const StateVector& y) {
 }
 
 bool reduction_applies(const Reduction& r, const StateVector& y) {
-  return std::abs(shell_spin_of(y) - r.spin) <= kReanalysedSpin * std::abs(r.spin);
+  return std::abs(shell_spin(y) - r.spin) <= kReanalysedSpin * std::abs(r.spin);
 }
 
 Eigen::Vector2d remaining_offset(const Reduction& r, const StateVector& y) {

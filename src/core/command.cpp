@@ -1,4 +1,4 @@
-// Validation of run-time commands: the state is never touched by a rejected one.
+// Validation and application of run-time commands: the state is never touched by a rejected one.
 #include "top_sim/command.hpp"
 
 #include <cmath>
@@ -104,6 +104,29 @@ std::string validate(const Command& c, const Model& model) {
     return validate_in_kind(c, full);
   }
   return validate_in_kind(c, model);
+}
+
+void apply_command(const Command& c, Model& model, StateVector& y) {
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const double spin = shell_spin(y);
+  const double rotor_spin = spin + y[idx::nu];
+  if (c.inclination) model.plane = make_plane(*c.inclination, model.plane.gravity);
+  if (c.friction) model.friction = *c.friction;
+  if (c.static_friction) model.contact.static_friction = *c.static_friction;
+  if (c.restitution) model.contact.restitution = *c.restitution;
+  if (c.rotor_coupling) model.top.rotor.coupling = *c.rotor_coupling;
+  if (c.patch_radius) {
+    model.finite_contact.hertz = false;
+    model.finite_contact.patch_radius = *c.patch_radius;
+  }
+  if (c.rolling_resistance) model.finite_contact.rolling_resistance = *c.rolling_resistance;
+  if (c.spin_drag) model.air.spin_drag = *c.spin_drag;
+  if (c.drag) model.air.drag = *c.drag;
+  if (c.spin) {
+    set_angular_velocity(y, angular_velocity(y) + (*c.spin - spin) * f_hat);
+    if (model.top.has_rotor) y[idx::nu] = rotor_spin - *c.spin;  // the rotor keeps its absolute spin
+  }
+  if (c.rotor_spin) y[idx::nu] = *c.rotor_spin - shell_spin(y);
 }
 
 }  // namespace top_sim

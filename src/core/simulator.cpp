@@ -37,8 +37,6 @@ constexpr double kTiltGuard = 0.05;       // n . f_hat - cos(theta_max)
 // stick speeds and handed back above twice that (explicit steps are stable there at the usual step sizes).
 constexpr double kLayerWidth = 100.0;
 
-double shell_spin(const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); }
-
 ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y) {
   Dynamics dyn;
   evaluate_dynamics(model, mode, y, dyn);
@@ -232,30 +230,6 @@ std::string Simulator::submit(const Command& command) {
   return "";
 }
 
-// Called with pending_mutex_ held: it changes model_, which submit() reads from other threads.
-void Simulator::apply_now(const Command& c) {
-  const Eigen::Vector3d f_hat = figure_axis(y_).normalized();
-  const double spin = shell_spin(y_);
-  const double rotor_spin = spin + y_[idx::nu];
-  if (c.inclination) model_.plane = make_plane(*c.inclination, model_.plane.gravity);
-  if (c.friction) model_.friction = *c.friction;
-  if (c.static_friction) model_.contact.static_friction = *c.static_friction;
-  if (c.restitution) model_.contact.restitution = *c.restitution;
-  if (c.rotor_coupling) model_.top.rotor.coupling = *c.rotor_coupling;
-  if (c.patch_radius) {
-    model_.finite_contact.hertz = false;
-    model_.finite_contact.patch_radius = *c.patch_radius;
-  }
-  if (c.rolling_resistance) model_.finite_contact.rolling_resistance = *c.rolling_resistance;
-  if (c.spin_drag) model_.air.spin_drag = *c.spin_drag;
-  if (c.drag) model_.air.drag = *c.drag;
-  if (c.spin) {
-    set_angular_velocity(y_, angular_velocity(y_) + (*c.spin - spin) * f_hat);
-    if (model_.top.has_rotor) y_[idx::nu] = rotor_spin - *c.spin;  // the rotor keeps its absolute spin
-  }
-  if (c.rotor_spin) y_[idx::nu] = *c.rotor_spin - shell_spin(y_);
-}
-
 // A contact that a command changed (spin, friction, inclination) may no longer hold in its mode: the closing rule
 // decides again (a flight stays a flight).
 void Simulator::reclose_contact() {
@@ -296,7 +270,7 @@ void Simulator::apply_pending() {
     // Under auto every command and event lands in the full model.
     if (model_.automatic.enabled && model_.kind != ModelKind::full) resume_full();
     reduction_ = Reduction{};
-    for (const Command& c : due) apply_now(c);
+    for (const Command& c : due) apply_command(c, model_, y_);  // model_ under the lock: submit() reads it
   }
   invalidate_sample();
   stationary_geometry_ = stationary_geometry(model_);  // the inclination or the law may have changed
