@@ -1,0 +1,65 @@
+// model.kind auto (physics.md section 7.1): a sleeping top handed to the reduced model at a regime point, and back
+// to the full model where the reduction no longer holds or a command arrives (command_queue.cpp).
+#include "simulator_impl.hpp"
+
+namespace top_sim {
+
+// Hand over at this regime point when the reduction is valid at its spin and the decaying modes would still move
+// the contact point by at most model.auto_tolerance.
+void SimulatorImpl::consider_handover(double t, const StateVector& y) {
+  if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
+  if (!reduction_.valid || !(remaining_offset(reduction_, y).norm() <= model_.automatic.position_tolerance)) return;
+  const Handover h = handover(model_, reduction_, y);
+  handover_.due = true;
+  handover_.t = t;
+  handover_.y = h.y;
+  handover_.energy_loss = mechanical_energy(model_, y) - mechanical_energy(model_, h.y);
+}
+
+// The handover found by the regime clock: the state and time go there, the reduced model takes over.
+bool SimulatorImpl::take_handover() {
+  if (!handover_.due) return false;
+  handover_.due = false;
+  StateVector y = handover_.y;
+  y[idx::w_diss] += handover_.energy_loss;  // the decaying modes' energy, as their friction would have taken it
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    model_.kind = ModelKind::adiabatic;
+  }
+  ++handovers_;
+  reduced_since_ = handover_.t;
+  restart(y, handover_.t, false);
+  return true;
+}
+
+// The reduced model has no events. Under auto its regime points are counted; with a spin moved by the bearing,
+// the reduction is analysed again, and where it is no longer valid the full model resumes at t_end.
+bool SimulatorImpl::scan_reduced(double t_end, const StateVector& y1) {
+  scanned_ = t_end;
+  if (!model_.automatic.enabled) {
+    run_cadence(t_end);
+    return fault_ == ContactFault::none;
+  }
+  skip_cadence(t_end);
+  if (reduction_applies(reduction_, y1)) return true;
+  reduction_ = analyse_reduction(model_, y1);
+  if (reduction_.valid) return true;
+  {
+    std::lock_guard<std::mutex> lock(pending_mutex_);
+    resume_full(t_end);
+  }
+  restart(y1, t_end, false);
+  return false;
+}
+
+// Called with pending_mutex_ held: it changes model_, which submit() reads from other threads.
+void SimulatorImpl::resume_full(double t) {
+  model_.kind = ModelKind::full;
+  reduced_seconds_ += t - reduced_since_;
+}
+
+double SimulatorImpl::reduced_seconds() const {
+  return reduced_seconds_ + (model_.automatic.enabled && model_.kind != ModelKind::full ? t_ - reduced_since_ : 0.0);
+}
+
+}  // namespace top_sim

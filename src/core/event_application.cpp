@@ -1,0 +1,113 @@
+// Applying a located event: a mode switch (stick, slip, lift-off), an impact at touchdown, or a fault (physics.md
+// sections 8 and 9); the contact mode's history and the Zeno guard.
+#include <algorithm>
+#include <cmath>
+#include <sstream>
+
+#include "simulator_impl.hpp"
+#include "top_sim/format.hpp"
+#include "top_sim/impact.hpp"
+
+namespace top_sim {
+
+namespace {
+
+constexpr int kMaxInstantSwitches = 100;  // mode switches at one instant before the Zeno guard stops the run
+
+std::string impact_painleve_message(double t, double denominator) {
+  std::ostringstream os;
+  os << "t = " << format_number(t) << " s: ";
+  os << "Painleve at impact: the sliding impulse has no admissible normal part (n . K (n - mu_i t_hat) = "
+     << denominator << " <= 0); reduce the friction";
+  return os.str();
+}
+
+}  // namespace
+
+// The event at the committed state (margins m there): the state after it is committed and the stepper restarted.
+void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
+  StateVector y = y_;
+  switch (event) {
+    case Event::painleve:
+      fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
+      return;
+    case Event::fallen:
+      fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
+      return;
+    case Event::transfer:
+      if (mode_ == ContactMode::slipping) {
+        const double e0 = mechanical_energy(model_, y);
+        apply_stick_impulse(model_, y);
+        const double loss = e0 - mechanical_energy(model_, y);
+        y[idx::w_diss] += loss;
+        switch_mode(ContactMode::rolling, ModeSwitchKind::stick, -loss);
+      } else {
+        switch_mode(ContactMode::slipping, ModeSwitchKind::slip);  // starts with v_t = 0
+      }
+      break;
+    case Event::lift_off:
+      y[idx::gap] = y[idx::gap_rate] = 0.0;
+      switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
+      break;
+    case Event::touchdown: {
+      y[idx::gap] = 0.0;
+      const double e0 = mechanical_energy(model_, y);
+      const ImpactResult impact = apply_impact(model_, y);
+      if (impact.painleve) {
+        commit(y, t_);
+        fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+        return;
+      }
+      ContactMode next = ContactMode::flight;  // a bounce flies again
+      if (impact.plastic) next = close_contact(model_, y).mode;  // Painleve: slipping, reported by the restart
+      const double loss = e0 - mechanical_energy(model_, y);  // an impact never raises E: the loss is booked
+      y[idx::w_diss] += loss;
+      switch_mode(next, ModeSwitchKind::touchdown, -loss);
+      break;
+    }
+    default:
+      return;
+  }
+  if (fault_ == ContactFault::none) restart(y, t_, false); else commit(y, t_);
+}
+
+void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {
+  mode_seconds_[static_cast<int>(mode_)] += t_ - mode_since_;
+  mode_since_ = t_;
+  if (switches_.size() < Simulator::kMaxPendingSwitches) switches_.push_back({t_, kind, mode_, mode, energy_change});
+  ++switch_count_;
+  mode_ = mode;
+  instant_switches_ = t_ - last_switch_t_ > 1e-12 * std::max(1.0, std::abs(t_)) ? 0 : instant_switches_ + 1;
+  last_switch_t_ = t_;
+  if (instant_switches_ > kMaxInstantSwitches) {
+    std::ostringstream os;
+    os << describe(ContactFault::numerical, 0.0, t_) << " (" << instant_switches_
+       << " contact-mode switches without time advancing, last " << to_string(kind) << " to " << to_string(mode)
+       << ")";
+    fail(ContactFault::numerical, os.str());
+  }
+}
+
+// The closed-form flight (flight.hpp) where its dynamics is gravity and no torque, else the numeric stepper; a
+// fixed-step method is chosen to see that method's own error, so its flights are stepped too.
+void SimulatorImpl::select_stepper() {
+  const bool closed =
+      mode_ == ContactMode::flight && flight_in_closed_form(model_) && is_adaptive(scene_.integrator.method);
+  if (closed == closed_flight_) return;
+  std::swap(stepper_, parked_);
+  closed_flight_ = closed;
+}
+
+std::array<double, kContactModeCount> SimulatorImpl::mode_seconds() const {
+  std::array<double, kContactModeCount> s = mode_seconds_;
+  s[static_cast<int>(mode_)] += t_ - mode_since_;
+  return s;
+}
+
+std::vector<ModeSwitch> SimulatorImpl::take_mode_switches() {
+  std::vector<ModeSwitch> out;
+  out.swap(switches_);
+  return out;
+}
+
+}  // namespace top_sim

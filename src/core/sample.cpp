@@ -1,0 +1,151 @@
+// The sample: what a reader sees of the committed state, analysed once on the first read (physics.md section 10).
+#include "sample.hpp"
+
+#include <cmath>
+#include <cstring>
+
+#include "counters.hpp"
+#include "simulator_impl.hpp"
+#include "top_sim/orientation.hpp"
+#include "top_sim/pose.hpp"
+
+namespace top_sim {
+
+namespace {
+
+// A regime point's analysis from the dynamics and the energy evaluated already; a sample adds the stationary state
+// at its spin.
+SampleAnalysis analysis_of(const Model& model, const StateVector& y, const Dynamics& dynamics, double energy,
+                           const StationaryState& model_stationary) {
+  SampleAnalysis a;
+  a.dynamics = dynamics;
+  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
+  a.energy = energy;
+  return a;
+}
+
+}  // namespace
+
+SampleAnalysis regime_point_analysis(const Model& model, ContactMode mode, const StateVector& y,
+                                     const StationaryState& model_stationary) {
+  Dynamics dynamics;
+  evaluate_dynamics(model, mode, y, dynamics);
+  return analysis_of(model, y, dynamics, mechanical_energy(model, y), model_stationary);
+}
+
+
+const char* overflowed_part(const SampleAnalysis& a) {
+  if (!std::isfinite(a.energy)) return "the energy";
+  const Dynamics& d = a.dynamics;
+  if (!(std::isfinite(d.mu) && std::isfinite(d.normal_force) && std::isfinite(d.nu_dot) &&
+        std::isfinite(d.contact.slip) && d.contact_force.allFinite() && d.omega_dot.allFinite() && d.a_cm.allFinite()))
+    return "the dynamics";
+  const RegimeIndicators& i = a.indicators;
+  if (!(std::isfinite(i.nutation_angle) && std::isfinite(i.nutation_rate) && std::isfinite(i.acceleration) &&
+        std::isfinite(i.speed)))
+    return "the regime indicators";
+  return nullptr;
+}
+
+
+// The sample of the committed state, analysed on the first read after a commit or a regime point and classified
+// with the hysteresis of the last point (a read commits nothing: the next read or point sees the same history).
+const SampleAnalysis& SimulatorImpl::sample() const {
+  if (sample_.revision != revision_ || sample_.point != cadence_k_) {
+    // The tick's end was just scanned, with a full evaluation: its dynamics and energy serve (the same bits).
+    const bool scanned = scan_end_.valid && scan_end_.has_dynamics && scan_end_.t == t_ &&
+                         std::memcmp(scan_end_.y.data(), y_.data(), sizeof(StateVector)) == 0;
+    sample_.analysis = scanned ? analyse_sample(model_, y_, stationary_geometry_, scan_end_.dynamics, scan_end_.energy)
+                               : analyse_sample(model_, mode_, y_, stationary_geometry_);
+    sample_.regime = classify(model_.regime, sample_.analysis.indicators, false, cadence_regime_);
+    sample_.revision = revision_;
+    sample_.point = cadence_k_;
+  }
+  return sample_.analysis;
+}
+
+Snapshot SimulatorImpl::snapshot() const {
+  const SampleAnalysis& a = sample();
+  const Regime regime = fault_ != ContactFault::none ? Regime::contact_fault : sample_.regime;
+  Snapshot s = make_snapshot(model_, y_, t_, balance_, a, regime, mode_);
+  if (fault_ != ContactFault::none) {
+    s.fault = fault_;
+    s.fault_message = fault_message_;
+  }
+  return s;
+}
+
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
+                              const StationaryGeometry& geometry) {
+  Dynamics dynamics;  // the reduced model's snapshot reads the sleeping state, never the dynamics (make_snapshot)
+  if (model.kind == ModelKind::full) evaluate_dynamics(model, mode, y, dynamics);
+  return analyse_sample(model, y, geometry, dynamics, mechanical_energy(model, y));
+}
+
+SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const StationaryGeometry& geometry,
+                              const Dynamics& dynamics, double energy) {
+  count(work_counters().sample_analyses);
+  SampleAnalysis a = analysis_of(model, y, dynamics, energy, geometry.state);
+  a.stationary = stationary_state(model, geometry, shell_spin(y));  // and the sleeping state at this spin
+  return a;
+}
+
+Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
+                       const SampleAnalysis& analysis, Regime regime, ContactMode mode) {
+  Snapshot s;
+  const Dynamics& dyn = analysis.dynamics;
+  const StationaryState& stationary = analysis.stationary;
+  const Top& top = model.top;
+  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
+  const Eigen::Vector3d w = angular_velocity(y);
+  const Eigen::Vector3d u = velocity3(y);
+  const TopPose pose = top_pose(model, y, t);  // the fields tf reads without a sample: one definition
+  s.t = pose.t;
+  s.alpha = pose.alpha;
+  s.contact_mode = mode;
+  s.gap = y[idx::gap];
+  s.tip_center = pose.tip_center;
+  s.com = pose.com;
+  s.orientation = pose.orientation;
+  s.tip_velocity = u;
+  s.com_velocity = u + w.cross(top.com_offset * f_hat);
+  s.contact_point = pose.contact_point;
+  s.figure_axis = f_hat;
+  s.angular_velocity = w;
+  s.spin = w.dot(f_hat);
+  s.has_rotor = top.has_rotor;
+  s.rotor_spin = top.has_rotor ? s.spin + y[idx::nu] : 0.0;
+  s.spin_phase = y[idx::psi];
+  if (model.kind == ModelKind::adiabatic) {
+    // The reduced model slides at s* with mu(s*) = tan(alpha) and N = m g cos(alpha) by construction.
+    s.slip = stationary.slip;
+    s.mu = std::tan(std::abs(model.plane.inclination));
+    s.normal_force = top.mass * model.plane.gravity * std::cos(model.plane.inclination);
+    s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
+    s.com_acceleration.setZero();
+  } else {
+    s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
+    s.mu = dyn.mu;
+    s.normal_force = dyn.normal_force;
+    s.drilling_torque = dyn.drilling_torque;  // 0 on a point contact and in flight (evaluate_dynamics, motion)
+    s.patch_radius = dyn.patch_radius;
+    s.friction_force = dyn.friction_force;
+    s.com_acceleration = dyn.a_cm;
+  }
+  s.phi = travel_angle(u.x(), u.y());
+  s.has_stationary_state = stationary.exists && stationary.phi_defined;
+  s.phi_star = s.has_stationary_state ? stationary.phi : 0.0;
+  s.indicators = analysis.indicators;
+  s.fault = ContactFault::none;
+  if (model.kind == ModelKind::full) {
+    if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
+    else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
+  }
+  s.regime = regime;
+  s.energy = analysis.energy;
+  s.dissipated_work = y[idx::w_diss];
+  s.energy_balance_residual = balance.residual(analysis.energy, y);  // the analysis' energy is y's
+  return s;
+}
+
+}  // namespace top_sim
