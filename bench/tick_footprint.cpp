@@ -6,7 +6,9 @@
 //   valgrind --tool=callgrind  build/bin/tick_footprint config/scenes/default.yaml 50 1    (then 2: instructions)
 //   valgrind --tool=cachegrind --cache-sim=yes --LL=3145728,12,64 build/bin/tick_footprint SCENE 1000 0.1 (0.3)
 // (D1 misses: the cache lines a top touches per tick, its data long evicted when its turn comes again).
-//   build/bin/tick_footprint SCENE TOPS SECONDS [WARMUP_TICKS=200] [RATE=200]
+// READ says what is read after each advance: `snapshot` (the default), `pose` (what tf and a top not read by a
+// `top_states` subscriber cost the node) or `none` (the physics alone).
+//   build/bin/tick_footprint SCENE TOPS SECONDS [WARMUP_TICKS=200] [RATE=200] [READ=snapshot|pose|none]
 #include <cstdio>
 #include <cstdlib>
 #include <ctime>
@@ -26,19 +28,22 @@ double cpu() {
 }
 
 int usage() {
-  std::fprintf(stderr, "usage: tick_footprint SCENE TOPS SECONDS [WARMUP_TICKS=200] [RATE=200]\n");
+  std::fprintf(stderr, "usage: tick_footprint SCENE TOPS SECONDS [WARMUP_TICKS=200] [RATE=200] [READ=snapshot|pose|none]\n");
   return 2;
 }
 
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 4 || argc > 6) return usage();
+  if (argc < 4 || argc > 7) return usage();
   const int tops = std::atoi(argv[2]);
   const double seconds = std::atof(argv[3]);
   const int warmup = argc > 4 ? std::atoi(argv[4]) : 200;
   const double rate = argc > 5 ? std::atof(argv[5]) : 200.0;
+  const std::string read = argc > 6 ? argv[6] : "snapshot";
   if (tops < 1 || !(seconds > 0.0) || warmup < 0 || !(rate > 0.0)) return usage();
+  if (read != "snapshot" && read != "pose" && read != "none") return usage();
+  const int reading = read == "snapshot" ? 0 : read == "pose" ? 1 : 2;  // no string compare per top
   const top_sim::Scene scene = top_sim::load_scene(argv[1]);
   std::vector<std::unique_ptr<top_sim::Simulator>> sims;
   for (int i = 0; i < tops; ++i) sims.push_back(std::make_unique<top_sim::Simulator>(scene));
@@ -47,7 +52,9 @@ int main(int argc, char** argv) {
     t += 1.0 / rate;
     for (auto& s : sims) {
       s->advance_to(t);
-      sink += s->snapshot().energy;  // read, so the sample is built
+      if (reading == 0) sink += s->snapshot().energy;  // read, so the sample is built
+      else if (reading == 1) sink += s->pose().tip_center.x();
+      else sink += s->time();
     }
   };
   for (int k = 0; k < warmup; ++k) tick();
@@ -57,9 +64,9 @@ int main(int argc, char** argv) {
   const double used = cpu() - c0;
   const auto& stats = sims.front()->stats();
   const double all_ticks = static_cast<double>(warmup + ticks);
-  std::printf("%d tops, %d + %d ticks at %g Hz: %.3f us CPU per top per tick; first top: %.3f steps, %.2f right-hand "
+  std::printf("%d tops, %d + %d ticks at %g Hz, read %s: %.3f us CPU per top per tick; first top: %.3f steps, %.2f right-hand "
               "sides per tick (checksum %.6g)\n",
-              tops, warmup, ticks, rate, 1e6 * used / (static_cast<double>(tops) * ticks),
+              tops, warmup, ticks, rate, read.c_str(), 1e6 * used / (static_cast<double>(tops) * ticks),
               static_cast<double>(stats.steps) / all_ticks, static_cast<double>(stats.rhs_evaluations) / all_ticks,
               sink);
   return 0;
