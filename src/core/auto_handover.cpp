@@ -10,7 +10,7 @@ void SimulatorImpl::consider_handover(double t, const StateVector& y) {
   if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
   if (!reduction_.valid || !(remaining_offset(reduction_, y).norm() <= model_.automatic.position_tolerance)) return;
   const Handover h = handover(model_, reduction_, y);
-  handover_.due = true;
+  handover_due_ = true;
   handover_.t = t;
   handover_.y = h.y;
   handover_.energy_loss = mechanical_energy(model_, y) - mechanical_energy(model_, h.y);
@@ -18,8 +18,8 @@ void SimulatorImpl::consider_handover(double t, const StateVector& y) {
 
 // The handover found by the regime clock: the state and time go there, the reduced model takes over.
 bool SimulatorImpl::take_handover() {
-  if (!handover_.due) return false;
-  handover_.due = false;
+  if (!handover_due_) return false;
+  handover_due_ = false;
   StateVector y = handover_.y;
   y[idx::w_diss] += handover_.energy_loss;  // the decaying modes' energy, as their friction would have taken it
   {

@@ -134,17 +134,17 @@ double SimulatorImpl::first_event_time(double lo, double hi) {
 }
 
 // The margins at a step's end: dopri5 (first same as last) has just evaluated the right-hand side there, so
-// its recorded contact force serves when y is the stepper's state in every bit (else one full evaluation, kept
-// in scan_end_ for the sample of that state).
+// its recorded contact force serves when y is the stepper's state in every bit (else one full evaluation, staged
+// in the sample's slot for the sample of that state).
 ModeMargins SimulatorImpl::step_end_margins(const StateVector& y) {
   ModeMargins m;
-  scan_end_.has_dynamics = false;
+  sample_.staged = false;
   if (stepper_->state_was_last_rhs() && std::memcmp(y.data(), stepper_->state().data(), sizeof(StateVector)) == 0 &&
       margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m))
     return m;
-  evaluate_dynamics(model_, mode_, y, scan_end_.dynamics);
-  scan_end_.has_dynamics = true;
-  return scan_end_.dynamics.margins;
+  Dynamics& staged = sample_.stage();
+  evaluate_dynamics(model_, mode_, y, staged);
+  return staged.margins;
 }
 
 // Which event a sample shows: faults, then lift-off / touchdown, then stick / slip (armed margins only). The

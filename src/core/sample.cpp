@@ -53,10 +53,12 @@ const char* overflowed_part(const SampleAnalysis& a) {
 const SampleAnalysis& SimulatorImpl::sample() const {
   if (sample_.revision != revision_ || sample_.point != cadence_k_) {
     // The tick's end was just scanned, with a full evaluation: its dynamics and energy serve (the same bits).
-    const bool scanned = scan_end_.valid && scan_end_.has_dynamics && scan_end_.t == t_ &&
+    const bool scanned = scan_end_.valid && sample_.staged && scan_end_.t == t_ &&
                          std::memcmp(scan_end_.y.data(), y_.data(), sizeof(StateVector)) == 0;
-    sample_.analysis = scanned ? analyse_sample(model_, y_, stationary_geometry_, scan_end_.dynamics, scan_end_.energy)
+    sample_.analysis = scanned ? analyse_sample(model_, y_, stationary_geometry_, sample_.analysis.dynamics,
+                                                scan_end_.energy)
                                : analyse_sample(model_, mode_, y_, stationary_geometry_);
+    sample_.staged = false;
     sample_.regime = classify(model_.regime, sample_.analysis.indicators, false, cadence_regime_);
     sample_.revision = revision_;
     sample_.point = cadence_k_;

@@ -35,7 +35,7 @@ std::string stalled_message(double t) {
 }  // namespace
 
 SimulatorImpl::SimulatorImpl(const Scene& scene)
-    : model_(scene.model), energy_residual_limit_(scene.integrator.max_energy_residual), scene_(scene) {
+    : energy_residual_limit_(scene.integrator.max_energy_residual), model_(scene.model), scene_(scene) {
   stepper_ = make_stepper(
       scene_.integrator,
       [this](const StateVector& y, StateVector& dydt) {
@@ -165,7 +165,7 @@ void SimulatorImpl::reset() {
   cadence_regime_ = Regime::nutating;
   regime_seconds_.fill(0.0);
   reduction_ = Reduction{};
-  handover_.due = false;
+  handover_due_ = false;
   handovers_ = 0;
   reduced_seconds_ = 0.0;
   if (fault_ == ContactFault::none) cadence_point(t_, y_);

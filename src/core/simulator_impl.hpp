@@ -74,63 +74,62 @@ class SimulatorImpl {
   double reduced_seconds() const;
   const Stepper& numeric_stepper() const { return closed_flight_ ? *parked_ : *stepper_; }
 
-  // The state: committed by commit() alone.
-  StateVector y_{};
+  // ---- What every advance touches, first and together. A node advances thousands of tops per tick, and the cache
+  // lines a top touches are what its tick costs beyond the arithmetic: with these fields spread over their stages'
+  // groups below, 1000 default tops took 57.7 D1 misses per top and tick, 56.3 with them here (cachegrind as in
+  // bench/tick_footprint.cpp's header; 8,747 instructions either way).
+  StateVector y_{};             // the state: committed by commit() alone
   double t_ = 0.0;
   std::uint64_t revision_ = 0;  // counts commits: a derived value made at another revision is stale
-
-  // Faults: the first one stops the run; time() stays at it.
-  ContactFault fault_ = ContactFault::none;
-  std::string fault_message_;
-
-  // The model in force: the scene's, as changed by the commands applied since the last reset.
-  Model model_;
+  double next_event_t_ = 0.0;   // command queue: t_origin_ + the next scripted event's t (infinite when none is left)
+  double t_origin_ = 0.0;       // time of the last reset: scripted events and the regime clock are relative to it
+  double scanned_ = 0.0;        // event location: the current step is scanned up to here
+  std::unique_ptr<Stepper> stepper_;
+  ContactFault fault_ = ContactFault::none;  // the first fault stops the run; time() stays at it
+  ContactMode mode_ = ContactMode::slipping;
   ContactModel contact_model_ = ContactModel::point;  // contact_model(model_), set at each restart
+  bool closed_flight_ = false;                        // stepper_ is the closed-form flight
+  bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
+  bool layer_kink_at_rest_ = false;  // the slip-onset layer (set at each restart): mu(0) > 0, and its half width
+  bool handover_due_ = false;        // auto: a handover found at a regime point, taken by the scan that ran the clock
+  std::atomic<bool> has_pending_{false};  // pending_ is not empty (set under the lock; read without it)
+  double layer_width_ = 0.0;
+  double cos_max_tilt_ = 1.0;
+  double energy_residual_limit_ = 0.0;     // the scene's integrator.max_energy_residual
+  double max_energy_residual_seen_ = 0.0;  // since the last reset
+  double cadence_t_ = 0.0;                 // regime clock: the last point's time and index
+  std::uint64_t cadence_k_ = 0;
+  EnergyBalance balance_;
+  ModeMargins last_margins_;   // at scanned_
+  ContactForceRecord record_;  // the contact force of the last right-hand side (at stepper_'s state if it says so)
+  // The model in force: the scene's, as changed by the commands applied since the last reset (every right-hand
+  // side reads it).
+  Model model_;
+
+  // ---- The rest, grouped by the stage that fills it.
+  std::string fault_message_;
   // Solved at reset and commands (no spin): the regime clock reads its existence and unstable root, a sample adds
   // omega* and u* at its spin.
   StationaryGeometry stationary_geometry_;
-
-  // The stepper, and the stepper not in use: the closed-form flight (flight.hpp) while stepping, the numeric one
-  // in such a flight.
-  std::unique_ptr<Stepper> stepper_;
-  std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);
-  bool closed_flight_ = false;  // stepper_ is the closed-form flight
-  ContactForceRecord record_;   // the contact force of the last right-hand side (at stepper_'s state if it says so)
-  // The slip-onset layer of the current model (set at each restart): its half width in |v_t| and whether mu(0) > 0.
-  double layer_width_ = 0.0;
-  bool layer_kink_at_rest_ = false;
-  double cos_max_tilt_ = 1.0;
-  EnergyBalance balance_;
-  double energy_residual_limit_ = 0.0;    // the scene's integrator.max_energy_residual
-  double max_energy_residual_seen_ = 0.0;  // since the last reset
+  std::unique_ptr<Stepper> parked_ = std::make_unique<FlightStepper>(model_);  // the stepper not in use
 
   // command_queue.cpp: commands from any thread, and the scene's scripted events.
   std::vector<Command> pending_;
-  mutable std::mutex pending_mutex_;       // guards pending_, and the owner's writes to model_ (submit() reads it)
-  std::atomic<bool> has_pending_{false};  // pending_ is not empty (set under the lock; read without it)
-  double t_origin_ = 0.0;                 // time of the last reset: scripted events are relative to it
+  mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
   std::size_t next_event_ = 0;
-  double next_event_t_ = 0.0;  // t_origin_ + the next scripted event's t (infinite when none is left)
 
-  // event_location.cpp: how far the current step is scanned, the margins there, and which events are armed.
-  double scanned_ = 0.0;
-  ModeMargins last_margins_;                          // at scanned_
-  bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
-  // The end of the last scan when it fell inside a step (a tick's end): its state and energy, and the dynamics
-  // when its margins took a full evaluation. The tick's state and its sample read them instead of evaluating the
-  // same state again. Valid until the stepper restarts (every change of state, model or mode).
+  // event_location.cpp: the end of the last scan when it fell inside a step (a tick's end): its state and energy
+  // (and its dynamics, staged in the sample's slot below). The tick's state and its sample read them instead of
+  // evaluating the same state again. Valid until the stepper restarts (every change of state, model or mode).
   struct ScanEnd {
     bool valid = false;
-    bool has_dynamics = false;
     double t = 0.0;
     double energy = 0.0;
     StateVector y{};
-    Dynamics dynamics;
   };
   ScanEnd scan_end_;
 
-  // event_application.cpp: the contact mode, its history and the Zeno guard.
-  ContactMode mode_ = ContactMode::slipping;
+  // event_application.cpp: the contact mode's history and the Zeno guard.
   double mode_since_ = 0.0;
   std::array<double, kContactModeCount> mode_seconds_{};
   std::vector<ModeSwitch> switches_;
@@ -138,17 +137,14 @@ class SimulatorImpl {
   int instant_switches_ = 0;  // consecutive switches without time advancing (Zeno guard)
   double last_switch_t_ = -1.0;
 
-  // regime_clock.cpp: the last point's time, index and regime (the hysteresis of classify()), and the seconds.
-  double cadence_t_ = 0.0;
-  std::uint64_t cadence_k_ = 0;
+  // regime_clock.cpp: the last point's regime (the hysteresis of classify()), and the seconds in each regime.
   Regime cadence_regime_ = Regime::nutating;
   std::array<double, kRegimeCount> regime_seconds_{};
 
-  // auto_handover.cpp (model.kind auto): the reduction last analysed, a handover found at a regime point (taken by
-  // the scan that ran the clock), and the bookkeeping of the reduced model's time.
+  // auto_handover.cpp (model.kind auto): the reduction last analysed, the handover found (handover_due_ above),
+  // and the bookkeeping of the reduced model's time.
   Reduction reduction_;
   struct PendingHandover {
-    bool due = false;
     double t = 0.0;
     double energy_loss = 0.0;  // E before - E after: booked in W_diss
     StateVector y{};
@@ -159,11 +155,22 @@ class SimulatorImpl {
   double reduced_seconds_ = 0.0;
 
   // sample.cpp: the lazy sample of the committed state, made at `revision` and classified at regime point `point`.
+  // A scan whose step-end margins take a full evaluation evaluates into the analysis' dynamics (stage()): that is
+  // the tick's end, the state the tick commits and its reader reads. A copy from a slot of the scan's own cost 1000
+  // default tops 6 more D1 misses per top and tick (56.3 against 50.3 staged here, 48.9 at 591c51d before the
+  // stages; cachegrind, tick_footprint).
   struct SampleCache {
-    std::uint64_t revision = ~std::uint64_t{0};
+    static constexpr std::uint64_t kStale = ~std::uint64_t{0};
+    std::uint64_t revision = kStale;
     std::uint64_t point = 0;
+    bool staged = false;  // analysis.dynamics holds the dynamics of scan_end_.y, not of an analysed state
     SampleAnalysis analysis;
     Regime regime = Regime::nutating;
+    Dynamics& stage() {
+      revision = kStale;  // the analysis it overwrites is no longer whole
+      staged = true;
+      return analysis.dynamics;
+    }
   };
   mutable SampleCache sample_;
 
