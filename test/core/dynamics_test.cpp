@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "test_states.hpp"
 #include "test_util.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/energy.hpp"
@@ -10,15 +11,9 @@
 #include "top_sim/simulator.hpp"
 
 using namespace top_sim;
+using top_sim_test::upright_state;
 
 namespace {
-
-StateVector upright(double w) {
-  StateVector y{};
-  y[idx::f + 2] = 1.0;
-  y[idx::omega + 2] = w;
-  return y;
-}
 
 // dE/dt along the right-hand side by a central difference, against -dW_diss/dt.
 void expect_power_balance(const Model& model, ContactMode mode, const StateVector& y, const char* what) {
@@ -41,7 +36,7 @@ void expect_power_balance(const Model& model, ContactMode mode, const StateVecto
 TEST(Dynamics, UprightSpinningTopAtRestCarriesItsWeightAndNothingElse) {
   const Model model = top_sim_test::scene_from(top_sim_test::standard_scene(0.0, 0.0)).model;
   Dynamics d;
-  evaluate_dynamics(model, ContactMode::slipping, upright(200.0), d);
+  evaluate_dynamics(model, ContactMode::slipping, upright_state(200.0), d);
   const double mg = model.top.mass * model.plane.gravity;
   EXPECT_NEAR(d.normal_force, mg, 1e-12 * mg);
   EXPECT_LT(d.friction_force.norm(), 1e-12 * mg);
@@ -66,7 +61,7 @@ TEST(Dynamics, StaticNormalForceIsMgCosAlphaInAnyState) {
 // tip's normal velocity and its rate the normal part of gravity (nothing else acts).
 TEST(Dynamics, KinematicRowsInContactAndInFlight) {
   const Model model = load_scene(top_sim_test::scene_path("default")).model;
-  StateVector y = upright(100.0), dydt;
+  StateVector y = upright_state(100.0), dydt;
   y[idx::u] = 0.03;
   y[idx::u + 1] = -0.01;
   derivative(model, ContactMode::slipping, y, dydt);

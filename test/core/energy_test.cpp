@@ -3,23 +3,13 @@
 
 #include <cmath>
 
+#include "test_states.hpp"
 #include "test_util.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/scene.hpp"
 
 using namespace top_sim;
-
-namespace {
-
-// A top standing upright at the origin, spinning at w about n, its tip sphere in contact.
-StateVector upright(double w) {
-  StateVector y{};
-  y[idx::f + 2] = 1.0;
-  y[idx::omega + 2] = w;
-  return y;
-}
-
-}  // namespace
+using top_sim_test::upright_state;
 
 // Level plane, upright, spinning, at rest: E = I_f W^2 / 2 + m g (R + f).
 TEST(Energy, UprightSpinningTopIsItsSpinAndItsHeight) {
@@ -27,14 +17,14 @@ TEST(Energy, UprightSpinningTopIsItsSpinAndItsHeight) {
   const Top& t = model.top;
   const double w = 150.0;
   const double expected = 0.5 * t.inertia_axial * w * w + t.mass * model.plane.gravity * (t.tip_radius + t.com_offset);
-  EXPECT_NEAR(mechanical_energy(model, upright(w)), expected, 1e-14 * expected);
+  EXPECT_NEAR(mechanical_energy(model, upright_state(w)), expected, 1e-14 * expected);
 }
 
 // On the incline, a step uphill (+y in the plane frame) raises the energy by m g sin(alpha) per metre.
 TEST(Energy, AStepUphillCostsMgSinAlphaPerMetre) {
   const double alpha = 0.2, step = 0.37;
   const Model model = top_sim_test::scene_from(top_sim_test::standard_scene(alpha, 100.0)).model;
-  StateVector y = upright(100.0), up = y;
+  StateVector y = upright_state(100.0), up = y;
   up[idx::x + 1] += step;
   const double rise = mechanical_energy(model, up) - mechanical_energy(model, y);
   EXPECT_NEAR(rise, model.top.mass * model.plane.gravity * std::sin(alpha) * step, 1e-12);
@@ -75,14 +65,14 @@ TEST(Energy, ScaleIsKineticEnergyPlusTheLiftOfTheCentreOfMass) {
     const double w = 80.0;
     const double expected =
         0.5 * t.inertia_axial * w * w + t.mass * model.plane.gravity * (t.tip_radius + std::abs(t.com_offset));
-    EXPECT_NEAR(energy_scale(model, upright(w)), expected, 1e-14 * expected) << scene;
+    EXPECT_NEAR(energy_scale(model, upright_state(w)), expected, 1e-14 * expected) << scene;
   }
 }
 
 // The balance: 0 after a rebase, 0 while energy moves into W_diss, and a gain of dE shows as dE / scale.
 TEST(EnergyBalance, ResidualIsTheRelativeGainOfEPlusWdiss) {
   const Model model = top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 200.0)).model;
-  StateVector y = upright(200.0);
+  StateVector y = upright_state(200.0);
   EnergyBalance balance;
   balance.rebase(model, y);
   const double E = mechanical_energy(model, y);
