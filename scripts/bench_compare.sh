@@ -41,7 +41,16 @@ build() {
 
 # A commit's built top_sim_run (bin/ in plain builds; older commits may lay it out as catkin's devel/lib/top_sim).
 tool() { find "$dir/$1/build" -name top_sim_run -type f -perm -u+x 2>/dev/null | head -1; }
-python_dir() { dirname "$(find "$dir/$1/build" -name 'top_sim.cpython*.so' 2>/dev/null | head -1)" 2>/dev/null; }
+# The directory to put on PYTHONPATH: the module's own (older commits: top_sim.cpython*.so) or the parent of the
+# package top_sim/ that holds _core (since the physics module and the messages share one package).
+python_dir() {
+  local so
+  so=$(find "$dir/$1/build" -name 'top_sim.cpython*.so' 2>/dev/null | head -1)
+  if [ -n "$so" ]; then dirname "$so"; return 0; fi
+  so=$(find "$dir/$1/build" -path '*/top_sim/_core.cpython*.so' 2>/dev/null | head -1)
+  if [ -n "$so" ]; then dirname "$(dirname "$so")"; fi
+  return 0
+}
 
 # CPU seconds top_sim_run reports on stdout ("... simulated in X s CPU ..."; older commits lack --quiet, and
 # progress goes to stderr only on a terminal); "nan", after a message, when it reported none.
