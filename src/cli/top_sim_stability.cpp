@@ -21,6 +21,7 @@
 #include <nlohmann/json.hpp>
 
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "plot.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -106,36 +107,31 @@ bool admissible_spin(double w) { return std::abs(w) <= top_sim::kMaxSpin; }
 // Reads the command line (throws BadArgument); false when it asked for --help.
 bool parse_arguments(int argc, char** argv, Arguments& args) {
   const std::string spin_range = "in [-1e6, 1e6] [rad/s]";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") return false;
-    if (a == "--state") {
-      const std::string text = value();
-      SpinningState st;
-      if (!top_sim::parse_spinning_state(text, st)) throw BadArgument{a + " = '" + text + "': must be upright or inverted"};
-      args.state = st;
-    } else if (a == "--spin") {
-      const std::string text = value();
-      const double w = number(a, text);
-      if (w == 0.0 || !admissible_spin(w)) throw BadArgument{a + " = '" + text + "': must be nonzero and " + spin_range};
-      args.spin = w;
-    } else if (a == "--json") {
-      args.json_path = value();
-    } else if (a == "--plot") {
-      args.plot_path = value();
-    } else if (a == "--sweep-alpha") {
-      args.sweep_alpha = parse_range(a, value(), admissible_alpha, "in (0, pi/2) [rad]");
-    } else if (a == "--sweep-spin") {
-      args.sweep_spin = parse_range(a, value(), admissible_spin, spin_range);
-    } else {
-      top_sim_cli::positional(a, args.scene_path, "scene file");
-    }
-  }
-  if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
+  std::vector<std::string> scenes;
+  top_sim_cli::CommandLine line;
+  line.value("--state", [&](const std::string& text) {
+    SpinningState st;
+    if (!top_sim::parse_spinning_state(text, st))
+      throw BadArgument{"--state = '" + text + "': must be upright or inverted"};
+    args.state = st;
+  });
+  line.value("--spin", [&](const std::string& text) {
+    const double w = number("--spin", text);
+    if (w == 0.0 || !admissible_spin(w))
+      throw BadArgument{"--spin = '" + text + "': must be nonzero and " + spin_range};
+    args.spin = w;
+  });
+  line.value("--json", [&](const std::string& v) { args.json_path = v; })
+      .value("--plot", [&](const std::string& v) { args.plot_path = v; })
+      .value("--sweep-alpha", [&](const std::string& v) {
+        args.sweep_alpha = parse_range("--sweep-alpha", v, admissible_alpha, "in (0, pi/2) [rad]");
+      })
+      .value("--sweep-spin", [&](const std::string& v) {
+        args.sweep_spin = parse_range("--sweep-spin", v, admissible_spin, spin_range);
+      })
+      .positionals(scenes);
+  if (!line.parse(argc, argv)) return false;
+  args.scene_path = top_sim_cli::one_positional(scenes, "scene file");
   if (!args.plot_path.empty() && !args.sweep_alpha && !args.sweep_spin)
     throw BadArgument{"--plot = '" + args.plot_path + "': needs --sweep-alpha or --sweep-spin (it draws the sweeps)"};
   return true;

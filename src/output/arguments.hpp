@@ -33,9 +33,10 @@ inline void positional(const std::string& a, std::string& slot, const std::strin
   slot = a;
 }
 
-// The tool's one positional argument (`what`: "scene file"); throws when none or more than one was given.
+// The tool's one positional argument (`what`: "scene file"); throws when none (an empty one is none) or more than
+// one was given.
 inline std::string one_positional(const std::vector<std::string>& given, const std::string& what) {
-  if (given.empty()) throw BadArgument{"no " + what + " given"};
+  if (given.empty() || (given.size() == 1 && given[0].empty())) throw BadArgument{"no " + what + " given"};
   if (given.size() > 1) throw BadArgument{"more than one " + what + " ('" + given[0] + "', '" + given[1] + "')"};
   return given[0];
 }
