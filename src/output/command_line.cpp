@@ -37,6 +37,7 @@ CommandLine& CommandLine::flag(const std::string& flag, std::function<void()> se
 
 CommandLine& CommandLine::positionals(std::vector<std::string>& out) {
   app_->add_option("arguments", out);
+  positionals_ = &out;
   return *this;
 }
 
@@ -55,6 +56,9 @@ bool CommandLine::parse(const std::vector<std::string>& args) {
   }
   if (const std::vector<std::string> rest = app_->remaining(); !rest.empty())
     throw BadArgument{unknown_ + " '" + rest.front() + "'"};
+  if (positionals_)  // what CLI11 takes for a value ("-1", "---", "-") is no tool's positional argument either
+    for (const std::string& a : *positionals_)
+      if (!a.empty() && a[0] == '-') throw BadArgument{unknown_ + " '" + a + "'"};
   return true;
 }
 

@@ -28,7 +28,8 @@ class CommandLine {
   CommandLine& value(const std::string& flag, std::function<void(const std::string&)> read);
   // FLAG takes no value.
   CommandLine& flag(const std::string& flag, std::function<void()> set);
-  // The arguments that are no option, in their order (without this, each is refused as unknown).
+  // The arguments that are no option, in their order (without this, each is refused as unknown; one that starts
+  // with '-' always is).
   CommandLine& positionals(std::vector<std::string>& out);
 
   // Reads `args` (no program name) in order; false when -h or --help came before any bad argument. Throws
@@ -40,6 +41,7 @@ class CommandLine {
   std::unique_ptr<CLI::App> app_;
   std::string unknown_;
   std::set<std::string> takes_value_;
+  const std::vector<std::string>* positionals_ = nullptr;
 };
 
 }  // namespace top_sim_cli
