@@ -120,19 +120,15 @@ std::string fit_json(const FitResult& r, const std::string& kind, double cpu_sec
     for (std::size_t i = 0; i < r.names.size(); ++i) o[r.names[i]] = value_of(static_cast<Eigen::Index>(i));
     return o;
   };
-  Json o = Json::object();  // a number that is not finite is written as null
-  o["fit"] = kind;
-  o["parameters"] = object([&](Eigen::Index i) { return r.values[i]; });
-  o["uncertainties"] = object([&](Eigen::Index i) { return r.errors[i]; });
-  o["covariance"] = object([&](Eigen::Index i) { return object([&](Eigen::Index j) { return r.covariance(i, j); }); });
-  o["chi2"] = r.chi2;
-  o["dof"] = r.dof;
-  o["sigma_known"] = r.sigma_known;
-  o["at_bound"] = r.at_bound;
-  o["converged"] = r.converged;
-  o["solver_message"] = r.message;
-  o["evaluations"] = r.evaluations;
-  o["cpu_seconds"] = cpu_seconds;
+  const Json o = {  // a number that is not finite is written as null
+      {"fit", kind},
+      {"parameters", object([&](Eigen::Index i) { return r.values[i]; })},
+      {"uncertainties", object([&](Eigen::Index i) { return r.errors[i]; })},
+      {"covariance",
+       object([&](Eigen::Index i) { return object([&](Eigen::Index j) { return r.covariance(i, j); }); })},
+      {"chi2", r.chi2}, {"dof", r.dof}, {"sigma_known", r.sigma_known}, {"at_bound", r.at_bound},
+      {"converged", r.converged}, {"solver_message", r.message}, {"evaluations", r.evaluations},
+      {"cpu_seconds", cpu_seconds}};
   return o.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
