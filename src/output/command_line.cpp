@@ -51,7 +51,8 @@ bool CommandLine::parse(const std::vector<std::string>& args) {
     // A flag that takes a value can only lack it at the end: the last argument is that flag.
     if (!args.empty() && takes_value_.count(args.back())) throw BadArgument{args.back() + ": needs a value"};
     throw BadArgument{e.what()};
-  } catch (const CLI::ParseError& e) {  // e.g. a flag given a value (--quiet=yes): CLI11's own one-line message
+  } catch (const CLI::ParseError& e) {
+    // e.g. a flag given a word that is no truth value (--quiet=abc): CLI11's own one-line message
     throw BadArgument{e.what()};
   }
   if (const std::vector<std::string> rest = app_->remaining(); !rest.empty())
