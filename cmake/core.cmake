@@ -11,12 +11,13 @@ set_target_properties(top_sim_core PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 # What every tool writes (CSV, summary, plots) and reads (arguments): top_sim_run, top_sim_bag, the CLI tools.
 # ROS-free, above the core; the tools are thin adapters over both (docs/architecture.md).
-add_library(top_sim_output src/output/run.cpp src/output/writers.cpp src/output/plot.cpp)
+add_library(top_sim_output src/output/run.cpp src/output/writers.cpp src/output/plot.cpp src/output/command_line.cpp)
 target_include_directories(top_sim_output PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/output)
-target_link_libraries(top_sim_output PUBLIC top_sim_core)
+# JSON through nlohmann-json and command lines through CLI11, both private: no tool's header includes them.
+target_link_libraries(top_sim_output PUBLIC top_sim_core PRIVATE nlohmann_json::nlohmann_json CLI11::CLI11)
 
 add_library(top_sim_cli_common src/cli/sweep_point.cpp src/cli/sweep_options.cpp src/cli/fit_data.cpp)
-target_link_libraries(top_sim_cli_common PUBLIC top_sim_output)
+target_link_libraries(top_sim_cli_common PUBLIC top_sim_output PRIVATE nlohmann_json::nlohmann_json)
 # Position-independent: the Python module (a shared object) links the sweep's code (cmake/python.cmake).
 set_target_properties(top_sim_output top_sim_cli_common PROPERTIES POSITION_INDEPENDENT_CODE ON)
 

@@ -17,7 +17,7 @@ install(FILES scripts/plots/fit_stationary.py scripts/plots/plotlib.py DESTINATI
 
 # The linear stability of the sleeping state (physics.md section 10): eigenvalues, alpha_c, spin windows.
 add_executable(top_sim_stability src/cli/top_sim_stability.cpp)
-target_link_libraries(top_sim_stability top_sim_cli_common)
+target_link_libraries(top_sim_stability top_sim_cli_common nlohmann_json::nlohmann_json)
 
 # Writes src/core/exact_law_table.cpp, the exact drilling law's tables (physics.md section 12); not installed.
 add_executable(top_sim_exact_law_table src/cli/top_sim_exact_law_table.cpp)

@@ -20,7 +20,7 @@ TOP_SIM_PACKAGES=(
   python3-visualization-msgs python3-tf2-ros libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   libdiagnostic-updater-dev python3-matplotlib xvfb cmake g++ make git iproute2
   pybind11-dev python3-dev python3-numpy python3-pytest python3-distributed python3-tqdm
-  librviz-dev pluginlib-dev libinteractive-markers-dev libmujoco-dev tf-tools
+  librviz-dev pluginlib-dev libinteractive-markers-dev libmujoco-dev tf-tools nlohmann-json3-dev libcli11-dev
 )
 
 # Every catkin_make call gets the same CMake arguments: catkin_make re-runs cmake whenever they change.

@@ -5,7 +5,7 @@
 #include <cstdlib>
 #include <sstream>
 
-#include "top_sim/format.hpp"
+#include <nlohmann/json.hpp>
 
 namespace top_sim {
 
@@ -36,8 +36,6 @@ bool parse_number(const std::string& text, double& v) {
   v = std::strtod(text.c_str(), &end);
   return end == text.c_str() + text.size();
 }
-
-std::string quote(const std::string& s) { return "\"" + s + "\""; }
 
 }  // namespace
 
@@ -116,28 +114,22 @@ std::vector<ContactSample> read_trajectory_data(std::istream& in, const std::str
 }
 
 std::string fit_json(const FitResult& r, const std::string& kind, double cpu_seconds) {
-  auto num = [](double v) { return std::isfinite(v) ? format_number(v) : std::string("null"); };
-  auto object = [&](auto value_of) {
-    std::string s = "{";
-    for (std::size_t i = 0; i < r.names.size(); ++i)
-      s += (i ? ", " : "") + quote(r.names[i]) + ": " + value_of(static_cast<Eigen::Index>(i));
-    return s + "}";
+  using Json = nlohmann::ordered_json;  // members in the documented order (docs/analysis.md)
+  auto object = [&r](auto value_of) {  // {name: value_of(i)} over the fitted parameters
+    Json o = Json::object();
+    for (std::size_t i = 0; i < r.names.size(); ++i) o[r.names[i]] = value_of(static_cast<Eigen::Index>(i));
+    return o;
   };
-  std::ostringstream o;
-  o << "{\n  \"fit\": " << quote(kind) << ",\n";
-  o << "  \"parameters\": " << object([&](Eigen::Index i) { return num(r.values[i]); }) << ",\n";
-  o << "  \"uncertainties\": " << object([&](Eigen::Index i) { return num(r.errors[i]); }) << ",\n";
-  o << "  \"covariance\": " << object([&](Eigen::Index i) {
-    return object([&](Eigen::Index j) { return num(r.covariance(i, j)); });
-  }) << ",\n";
-  o << "  \"chi2\": " << num(r.chi2) << ",\n  \"dof\": " << r.dof << ",\n";
-  o << "  \"sigma_known\": " << (r.sigma_known ? "true" : "false") << ",\n";
-  o << "  \"at_bound\": [";
-  for (std::size_t i = 0; i < r.at_bound.size(); ++i) o << (i ? ", " : "") << quote(r.at_bound[i]);
-  o << "],\n";
-  o << "  \"converged\": " << (r.converged ? "true" : "false") << ",\n  \"solver_message\": " << quote(r.message)
-    << ",\n  \"evaluations\": " << r.evaluations << ",\n  \"cpu_seconds\": " << num(cpu_seconds) << "\n}\n";
-  return o.str();
+  const Json o = {  // a number that is not finite is written as null
+      {"fit", kind},
+      {"parameters", object([&](Eigen::Index i) { return r.values[i]; })},
+      {"uncertainties", object([&](Eigen::Index i) { return r.errors[i]; })},
+      {"covariance",
+       object([&](Eigen::Index i) { return object([&](Eigen::Index j) { return r.covariance(i, j); }); })},
+      {"chi2", r.chi2}, {"dof", r.dof}, {"sigma_known", r.sigma_known}, {"at_bound", r.at_bound},
+      {"converged", r.converged}, {"solver_message", r.message}, {"evaluations", r.evaluations},
+      {"cpu_seconds", cpu_seconds}};
+  return o.dump(2, ' ', false, Json::error_handler_t::replace) + "\n";
 }
 
 }  // namespace top_sim

@@ -2,10 +2,10 @@
 
 #include <cmath>
 #include <cstdlib>
-#include <functional>
 #include <sstream>
 
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/limits.hpp"
 
@@ -119,82 +119,72 @@ std::vector<PatchRadius> patch_list(const std::string& flag, const std::string& 
   return patches;
 }
 
-using Value = std::function<std::string()>;  // the flag's value (throws BadArgument when it has none)
+using top_sim_cli::CommandLine;
+using Text = const std::string&;
 
-// One of the grid's flags into `o`; false when `flag` is not a grid flag.
-bool read_grid_option(const std::string& a, const Value& value, SweepOptions& o) {
-  if (a == "--alpha") {
-    o.alphas = number_list(a, value(), [](double v) { return v > 0.0 && top_sim::admissible_inclination(v); }, "in (0, pi/2) [rad]");
-  } else if (a == "--spin") {
-    o.spins = number_list(a, value(), [](double v) { return v != 0.0 && std::abs(v) <= 1e5; },
+// The grid's flags, read into `o`.
+void add_grid_options(CommandLine& line, SweepOptions& o) {
+  line.value("--alpha", [&o](Text v) {
+    o.alphas = number_list("--alpha", v, [](double a) { return a > 0.0 && admissible_inclination(a); },
+                           "in (0, pi/2) [rad]");
+  });
+  line.value("--spin", [&o](Text v) {
+    o.spins = number_list("--spin", v, [](double w) { return w != 0.0 && std::abs(w) <= 1e5; },
                           "nonzero with |spin| <= 1e5 [rad/s]");
-  } else if (a == "--mu-c" || a == "--s-c") {
-    const bool mu = a == "--mu-c";
-    const ParameterRange range = find_friction_parameter(mu ? "mu_c" : "s_c")->range;
-    const auto v = number_list(a, value(), [range](double x) { return range.admits(x); }, range.text());
-    auto& target = mu ? o.mu_cs : o.s_cs;
-    target.assign(v.begin(), v.end());
-  } else if (a == "--patch-radius") {
-    o.patches = patch_list(a, value());
-  } else if (a == "--top") {
-    o.tops = name_list(a, value());
-  } else if (a == "--plane") {
-    o.planes = name_list(a, value());
-  } else {
-    return false;
+  });
+  for (const bool mu : {true, false}) {
+    const std::string flag = mu ? "--mu-c" : "--s-c";
+    line.value(flag, [&o, mu, flag](Text v) {
+      const ParameterRange range = find_friction_parameter(mu ? "mu_c" : "s_c")->range;
+      const auto values = number_list(flag, v, [range](double x) { return range.admits(x); }, range.text());
+      (mu ? o.mu_cs : o.s_cs).assign(values.begin(), values.end());
+    });
   }
-  return true;
+  line.value("--patch-radius", [&o](Text v) { o.patches = patch_list("--patch-radius", v); });
+  line.value("--top", [&o](Text v) { o.tops = name_list("--top", v); });
+  line.value("--plane", [&o](Text v) { o.planes = name_list("--plane", v); });
 }
 
-// One of the flags of each point's run or of the output into `o`; false when `flag` is none of them.
-bool read_run_option(const std::string& a, const Value& value, SweepOptions& o) {
+// `flag`'s value into `target`: a number admitted by `ok`, described by `range`.
+template <class Ok>
+void add_checked(CommandLine& line, const std::string& flag, double& target, Ok ok, const std::string& range) {
+  line.value(flag, [&target, flag, ok, range](Text v) { target = checked(flag, v, ok, range); });
+}
+
+// The flags of each point's run and of the output, read into `o`.
+void add_run_options(CommandLine& line, SweepOptions& o) {
   SweepSettings& settings = o.settings;
-  if (a == "--start") {
-    const std::string s = value();
-    if (s == "tilted") settings.start = SweepStart::tilted;
-    else if (s == "launched") settings.start = SweepStart::launched;
-    else throw BadArgument{a + " = '" + s + "': must be tilted | launched"};
-  } else if (a == "--tilt") {
-    settings.tilt = checked(a, value(), [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
-  } else if (a == "--perturbation") {
-    settings.launch_perturbation = checked(a, value(), [](double v) { return v >= 0.0 && v <= 0.5; }, "in [0, 0.5] [rad]");
-  } else if (a == "--max-path") {
-    settings.max_path = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [m]");
-  } else if (a == "--max-duration") {
-    settings.max_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
+  line.value("--start", [&settings](Text v) {
+    if (v == "tilted") settings.start = SweepStart::tilted;
+    else if (v == "launched") settings.start = SweepStart::launched;
+    else throw BadArgument{"--start = '" + v + "': must be tilted | launched"};
+  });
+  add_checked(line, "--tilt", settings.tilt, [](double v) { return v >= 0.0 && v < 1.0; }, "in [0, 1) [rad]");
+  add_checked(line, "--perturbation", settings.launch_perturbation, [](double v) { return v >= 0.0 && v <= 0.5; },
+              "in [0, 0.5] [rad]");
+  add_checked(line, "--max-path", settings.max_path, [](double v) { return v > 0.0; }, "> 0 [m]");
+  line.value("--max-duration", [&settings](Text v) {
+    settings.max_duration = checked("--max-duration", v, [](double d) { return d > 0.0; }, "> 0 [s]");
     settings.min_duration = std::min(settings.min_duration, settings.max_duration);
-  } else if (a == "--slide-duration") {
-    settings.slide_duration = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [s]");
-  } else if (a == "--tol") {
-    settings.phi_tolerance = checked(a, value(), [](double v) { return v > 0.0; }, "> 0 [rad]");
-  } else if (a == "--threads") {
-    o.threads = static_cast<unsigned>(checked(a, value(), [](double v) { return v >= 1 && v <= 1024 && v == std::floor(v); },
-                                              "an integer in [1, 1024]"));
-  } else if (a == "--out") {
-    o.out_path = value();
-  } else if (a == "--config") {
-    settings.config_dir = value();
-  } else {
-    return false;
-  }
-  return true;
+  });
+  add_checked(line, "--slide-duration", settings.slide_duration, [](double v) { return v > 0.0; }, "> 0 [s]");
+  add_checked(line, "--tol", settings.phi_tolerance, [](double v) { return v > 0.0; }, "> 0 [rad]");
+  line.value("--threads", [&o](Text v) {
+    const auto whole = [](double n) { return n >= 1 && n <= 1024 && n == std::floor(n); };
+    o.threads = static_cast<unsigned>(checked("--threads", v, whole, "an integer in [1, 1024]"));
+  });
+  line.value("--out", [&o](Text v) { o.out_path = v; });
+  line.value("--config", [&settings](Text v) { settings.config_dir = v; });
 }
 
 }  // namespace
 
 bool parse_sweep_options(const std::vector<std::string>& args, SweepOptions& o) {
   o.alphas = number_list("--alpha", "0.01:0.30:30", [](double) { return true; }, "");
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    const Value value = [&]() -> std::string {
-      if (i + 1 >= args.size()) throw BadArgument{a + ": needs a value"};
-      return args[++i];
-    };
-    if (a == "-h" || a == "--help") return false;
-    if (!read_grid_option(a, value, o) && !read_run_option(a, value, o))
-      throw BadArgument{"unknown argument '" + a + "'"};
-  }
-  return true;
+  CommandLine line("unknown argument");  // a sweep takes no positional argument
+  add_grid_options(line, o);
+  add_run_options(line, o);
+  return line.parse(args);
 }
 
 std::vector<SweepPoint> make_sweep_grid(const SweepOptions& o) {

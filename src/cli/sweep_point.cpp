@@ -37,7 +37,8 @@ YAML::Node load_named(const std::string& name, const std::string& config_dir, co
 
 double wrapped_difference(double a, double b) { return std::remainder(a - b, 2.0 * M_PI); }
 
-std::string num(double v) {
+// A number's cell in the sweep CSV (docs/interfaces.md): 10 significant digits, nan when not finite.
+std::string csv_cell(double v) {
   if (!std::isfinite(v)) return "nan";
   std::ostringstream os;
   os << std::setprecision(10) << v;
@@ -66,7 +67,7 @@ Scene parse_point_scene(const YAML::Node& root, const std::string& source, const
 
 }  // namespace
 
-std::string patch_radius_text(const PatchRadius& patch) { return patch.hertz ? "hertz" : num(patch.metres); }
+std::string patch_radius_text(const PatchRadius& patch) { return patch.hertz ? "hertz" : csv_cell(patch.metres); }
 
 Scene make_sweep_scene(const SweepPoint& p, const SweepSettings& settings) {
   const std::string config_dir = settings.config_dir.empty() ? default_config_dir() : settings.config_dir;
@@ -208,12 +209,13 @@ void write_sweep_header(std::ostream& os) {
 
 void write_sweep_row(std::ostream& os, const SweepResult& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  os << r.point.top << ',' << r.point.plane << ',' << num(r.mu_c) << ',' << num(r.s_c) << ',' << num(r.point.spin) << ','
-     << num(r.point.alpha) << ',' << num(r.tan_alpha) << ',' << num(r.s_stable >= 0.0 ? r.s_stable : nan) << ','
-     << num(r.s_unstable >= 0.0 ? r.s_unstable : nan) << ',' << num(r.phi_star.value_or(nan)) << ','
-     << num(r.phi.value_or(nan)) << ',' << num(r.tan_half.value_or(nan)) << ',' << r.outcome << ','
-     << to_string(r.regime) << ',' << num(r.sim_seconds) << ',' << num(r.cpu_seconds) << ',' << r.steps << ','
-     << r.rhs_evaluations << ',' << patch_radius_text(r.point.patch) << '\n';
+  os << r.point.top << ',' << r.point.plane << ',';
+  for (double v : {r.mu_c, r.s_c, r.point.spin, r.point.alpha, r.tan_alpha, r.s_stable >= 0.0 ? r.s_stable : nan,
+                   r.s_unstable >= 0.0 ? r.s_unstable : nan, r.phi_star.value_or(nan), r.phi.value_or(nan),
+                   r.tan_half.value_or(nan)})
+    os << csv_cell(v) << ',';
+  os << r.outcome << ',' << to_string(r.regime) << ',' << csv_cell(r.sim_seconds) << ',' << csv_cell(r.cpu_seconds)
+     << ',' << r.steps << ',' << r.rhs_evaluations << ',' << patch_radius_text(r.point.patch) << '\n';
 }
 
 }  // namespace top_sim

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "fit_data.hpp"
 #include "plot.hpp"
 #include "run.hpp"
@@ -61,23 +62,18 @@ double number(const std::string& flag, const std::string& text) {
 // Reads the command line (throws BadArgument); false when it asked for --help.
 bool parse_arguments(int argc, char** argv, Arguments& a) {
   std::vector<std::string> positional;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw BadArgument{arg + ": needs a value"};
-      return argv[++i];
-    };
-    if (arg == "-h" || arg == "--help") return false;
-    if (arg == "--law") a.law = value();
-    else if (arg == "--json") a.json = value();
-    else if (arg == "--plot") a.plot = value();
-    else if (arg == "--scene") a.scene = value();
-    else if (arg == "--free") a.free = split_list(value());
-    else if (arg == "--sigma") a.sigma = number(arg, value());
-    else if (arg == "--slips") for (const auto& s : split_list(value())) a.slips.push_back(number(arg, s));
-    else if (!arg.empty() && arg[0] == '-') throw BadArgument{"unknown option '" + arg + "'"};
-    else positional.push_back(arg);
-  }
+  top_sim_cli::CommandLine line;
+  line.value("--law", [&](const std::string& v) { a.law = v; })
+      .value("--json", [&](const std::string& v) { a.json = v; })
+      .value("--plot", [&](const std::string& v) { a.plot = v; })
+      .value("--scene", [&](const std::string& v) { a.scene = v; })
+      .value("--free", [&](const std::string& v) { a.free = split_list(v); })
+      .value("--sigma", [&](const std::string& v) { a.sigma = number("--sigma", v); })
+      .value("--slips", [&](const std::string& v) {
+        for (const auto& s : split_list(v)) a.slips.push_back(number("--slips", s));
+      })
+      .positionals(positional);
+  if (!line.parse(argc, argv)) return false;
   if (positional.size() != 2) throw BadArgument{"needs the fit kind (stationary or trajectory) and one data file"};
   a.kind = positional[0];
   a.data = positional[1];

@@ -9,9 +9,11 @@
 #include <memory>
 #include <string>
 #include <thread>
+#include <vector>
 #include <unistd.h>
 
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "writers.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/pacing.hpp"
@@ -40,10 +42,10 @@ constexpr double kMaxCsvRows = 1.0e8;
 
 using top_sim_cli::BadArgument;
 
-double positive_number(const std::string& flag, const char* text) {
+double positive_number(const std::string& flag, const std::string& text) {
   char* end = nullptr;
-  const double v = std::strtod(text, &end);
-  if (end == text || *end != '\0' || !std::isfinite(v) || v <= 0.0)
+  const double v = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(v) || v <= 0.0)
     throw BadArgument{flag + " = '" + text + "': must be a number > 0"};
   return v;
 }
@@ -57,37 +59,25 @@ struct Arguments {
 
 // Reads the command line (throws BadArgument); false when it asked for --help.
 bool parse_arguments(int argc, char** argv, Arguments& args) {
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> const char* {
-      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") {
-      return false;
-    } else if (a == "--duration") {
-      args.duration = positive_number(a, value());
-    } else if (a == "--rate") {
-      args.rate = positive_number(a, value());
-    } else if (a == "--quiet") {
-      args.quiet = true;
-    } else if (a == "--progress") {
-      args.progress = true;
-    } else if (a == "--csv") {
-      args.csv_path = value();
-    } else if (a == "--summary") {
-      args.summary_path = value();
-    } else if (a == "--lcm") {
-      args.lcm_url = value();
-      if (args.lcm_url.empty()) throw BadArgument{"--lcm = '': must be an LCM URL such as udpm://239.255.76.67:7667?ttl=0"};
-    } else if (a == "--lcm-channel") {
-      args.lcm_channel = value();
-      if (args.lcm_channel.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
-    } else {
-      top_sim_cli::positional(a, args.scene_path, "scene file");
-    }
-  }
-  if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
+  std::vector<std::string> scenes;
+  top_sim_cli::CommandLine line;
+  line.value("--duration", [&](const std::string& v) { args.duration = positive_number("--duration", v); })
+      .value("--rate", [&](const std::string& v) { args.rate = positive_number("--rate", v); })
+      .flag("--quiet", [&] { args.quiet = true; })
+      .flag("--progress", [&] { args.progress = true; })
+      .value("--csv", [&](const std::string& v) { args.csv_path = v; })
+      .value("--summary", [&](const std::string& v) { args.summary_path = v; })
+      .value("--lcm", [&](const std::string& v) {
+        if (v.empty()) throw BadArgument{"--lcm = '': must be an LCM URL such as udpm://239.255.76.67:7667?ttl=0"};
+        args.lcm_url = v;
+      })
+      .value("--lcm-channel", [&](const std::string& v) {
+        if (v.empty()) throw BadArgument{"--lcm-channel = '': must be a non-empty channel name"};
+        args.lcm_channel = v;
+      })
+      .positionals(scenes);
+  if (!line.parse(argc, argv)) return false;
+  args.scene_path = top_sim_cli::one_positional(scenes, "scene file");
 #ifndef TOP_SIM_HAVE_LCM
   if (!args.lcm_url.empty()) throw BadArgument{"--lcm: this build has no LCM support (liblcm-dev and lcm-gen were not found)"};
 #endif

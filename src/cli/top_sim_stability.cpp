@@ -18,7 +18,10 @@
 #include <string>
 #include <vector>
 
+#include <nlohmann/json.hpp>
+
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "plot.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
@@ -31,6 +34,7 @@ extern char** environ;
 namespace {
 
 using top_sim::Eigenvalue;
+using top_sim::format_number;
 using top_sim::SpinningState;
 using top_sim::StabilityResult;
 
@@ -103,42 +107,35 @@ bool admissible_spin(double w) { return std::abs(w) <= top_sim::kMaxSpin; }
 // Reads the command line (throws BadArgument); false when it asked for --help.
 bool parse_arguments(int argc, char** argv, Arguments& args) {
   const std::string spin_range = "in [-1e6, 1e6] [rad/s]";
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw BadArgument{a + ": needs a value"};
-      return argv[++i];
-    };
-    if (a == "-h" || a == "--help") return false;
-    if (a == "--state") {
-      const std::string text = value();
-      SpinningState st;
-      if (!top_sim::parse_spinning_state(text, st)) throw BadArgument{a + " = '" + text + "': must be upright or inverted"};
-      args.state = st;
-    } else if (a == "--spin") {
-      const std::string text = value();
-      const double w = number(a, text);
-      if (w == 0.0 || !admissible_spin(w)) throw BadArgument{a + " = '" + text + "': must be nonzero and " + spin_range};
-      args.spin = w;
-    } else if (a == "--json") {
-      args.json_path = value();
-    } else if (a == "--plot") {
-      args.plot_path = value();
-    } else if (a == "--sweep-alpha") {
-      args.sweep_alpha = parse_range(a, value(), admissible_alpha, "in (0, pi/2) [rad]");
-    } else if (a == "--sweep-spin") {
-      args.sweep_spin = parse_range(a, value(), admissible_spin, spin_range);
-    } else {
-      top_sim_cli::positional(a, args.scene_path, "scene file");
-    }
-  }
-  if (args.scene_path.empty()) throw BadArgument{"no scene file given"};
+  std::vector<std::string> scenes;
+  top_sim_cli::CommandLine line;
+  line.value("--state", [&](const std::string& text) {
+    SpinningState st;
+    if (!top_sim::parse_spinning_state(text, st))
+      throw BadArgument{"--state = '" + text + "': must be upright or inverted"};
+    args.state = st;
+  });
+  line.value("--spin", [&](const std::string& text) {
+    const double w = number("--spin", text);
+    if (w == 0.0 || !admissible_spin(w))
+      throw BadArgument{"--spin = '" + text + "': must be nonzero and " + spin_range};
+    args.spin = w;
+  });
+  line.value("--json", [&](const std::string& v) { args.json_path = v; })
+      .value("--plot", [&](const std::string& v) { args.plot_path = v; })
+      .value("--sweep-alpha", [&](const std::string& v) {
+        args.sweep_alpha = parse_range("--sweep-alpha", v, admissible_alpha, "in (0, pi/2) [rad]");
+      })
+      .value("--sweep-spin", [&](const std::string& v) {
+        args.sweep_spin = parse_range("--sweep-spin", v, admissible_spin, spin_range);
+      })
+      .positionals(scenes);
+  if (!line.parse(argc, argv)) return false;
+  args.scene_path = top_sim_cli::one_positional(scenes, "scene file");
   if (!args.plot_path.empty() && !args.sweep_alpha && !args.sweep_spin)
     throw BadArgument{"--plot = '" + args.plot_path + "': needs --sweep-alpha or --sweep-spin (it draws the sweeps)"};
   return true;
 }
-
-std::string num(double v) { return top_sim::format_number(v); }
 
 std::string complex_text(Eigenvalue v) {
   std::ostringstream os;
@@ -197,7 +194,7 @@ void print_analysis(const top_sim::Model& model, const StabilityResult& r, std::
   else
     (*report) << "sleeping state: alpha " << r.alpha << " rad, shell spin " << r.spin << " rad/s";
   if (model.top.has_rotor) (*report) << ", rotor spin " << r.rotor_spin << " rad/s";
-  (*report) << (state ? "\n" + magnus_text(model, *state) : ", s* " + num(r.slip)) << "\n";
+  (*report) << (state ? "\n" + magnus_text(model, *state) : ", s* " + format_number(r.slip)) << "\n";
   if (state && model.top.com_offset > 0.0) (*report) << maxwell_klein_text(model) << "\n";
   (*report) << "eigenvalues [1/s] of the Jacobian over u, f_hat (tangent plane), omega" << (model.top.has_rotor ? ", nu" : "")
             << ":\n  zero (free spin)  " << complex_text(r.zero) << "\n  precession        "
@@ -217,21 +214,29 @@ void print_analysis(const top_sim::Model& model, const StabilityResult& r, std::
               << "; this is the spectrum of the frozen state\n";
 }
 
-std::string pair_json(Eigenvalue v) { return "[" + num(v.real()) + ", " + num(v.imag()) + "]"; }
+using Json = nlohmann::ordered_json;
 
+Json pair_json(Eigenvalue v) { return {v.real(), v.imag()}; }
+
+Json pairs_json(const std::vector<Eigenvalue>& values) {
+  Json a = Json::array();
+  for (const Eigenvalue& v : values) a.push_back(pair_json(v));
+  return a;
+}
+
+// The analysis as JSON (docs/interfaces.md); a number that is not finite is null.
 std::string analysis_json(const StabilityResult& r, std::optional<SpinningState> state) {
-  std::ostringstream os;
-  os << "{\n";
-  if (state) os << "  \"state\": \"" << top_sim::to_string(*state) << "\",\n";
-  os << "  \"eigenvalues\": [";
-  for (std::size_t i = 0; i < r.eigenvalues.size(); ++i) os << (i ? ", " : "") << pair_json(r.eigenvalues[i]);
-  os << "],\n  \"modes\": {\"precession\": " << pair_json(r.modes.precession)
-     << ", \"nutation\": " << pair_json(r.modes.nutation) << ", \"friction\": [";
-  for (std::size_t i = 0; i < r.modes.friction.size(); ++i) os << (i ? ", " : "") << pair_json(r.modes.friction[i]);
-  os << "]},\n  \"stable\": " << (r.stable ? "true" : "false") << ",\n  \"relaxation_time\": "
-     << (std::isfinite(r.relaxation_time) ? num(r.relaxation_time) : "null") << ",\n  \"spin\": " << num(r.spin)
-     << ",\n  \"alpha\": " << num(r.alpha) << "\n}\n";
-  return os.str();
+  Json o = Json::object();
+  if (state) o["state"] = top_sim::to_string(*state);
+  o["eigenvalues"] = pairs_json(r.eigenvalues);
+  o["modes"] = {{"precession", pair_json(r.modes.precession)},
+                {"nutation", pair_json(r.modes.nutation)},
+                {"friction", pairs_json(r.modes.friction)}};
+  o["stable"] = r.stable;
+  o["relaxation_time"] = r.relaxation_time;
+  o["spin"] = r.spin;
+  o["alpha"] = r.alpha;
+  return o.dump(2) + "\n";
 }
 
 bool write_text(const std::string& path, const std::string& text, const std::string& flag) {
@@ -338,7 +343,7 @@ std::string windows_text(const std::vector<top_sim::SpinWindow>& windows, const 
   std::string list;
   for (const auto& w : windows) {
     (*report) << " [" << w.lower << ", " << w.upper << "] (largest " << w.max_real << " 1/s at " << w.at_spin << ")";
-    list += (list.empty() ? "" : ",") + num(w.lower) + ":" + num(w.upper);
+    list += (list.empty() ? "" : ",") + format_number(w.lower) + ":" + format_number(w.upper);
   }
   (*report) << (windows.empty() ? " none" : "") << "\n";
   return list;
@@ -366,13 +371,16 @@ void write_sweep_csv(std::ostream& os, const std::vector<SweepRow>& rows) {
     const StabilityResult& r = row.r;
     double fric_min = INFINITY;
     for (const Eigenvalue& v : r.modes.friction) fric_min = std::min(fric_min, v.real());
-    os << row.sweep << "," << num(r.alpha) << "," << num(r.spin) << "," << r.exists << "," << r.stable;
-    if (r.exists)
-      os << "," << num(r.modes.precession.real()) << "," << num(r.modes.precession.imag()) << ","
-         << num(r.modes.nutation.real()) << "," << num(r.modes.nutation.imag()) << "," << num(max_friction_real(r))
-         << "," << num(fric_min) << "," << num(r.max_real) << "\n";
-    else
+    os << row.sweep << "," << format_number(r.alpha) << "," << format_number(r.spin) << "," << r.exists << ","
+       << r.stable;
+    if (!r.exists) {
       os << ",nan,nan,nan,nan,nan,nan,nan\n";
+      continue;
+    }
+    for (double v : {r.modes.precession.real(), r.modes.precession.imag(), r.modes.nutation.real(),
+                     r.modes.nutation.imag(), max_friction_real(r), fric_min, r.max_real})
+      os << "," << format_number(v);
+    os << "\n";
   }
 }
 
@@ -415,17 +423,17 @@ void run_spin_sweep(const Arguments& args, const top_sim::Scene& scene, std::vec
     const std::string name = top_sim::to_string(state);
     extra.push_back("--windows-" + name + "=" + report_spinning_windows(scene, range, state));
     const double wk2 = top_sim::magnus_critical_spin_squared(scene.model, state);
-    extra.push_back("--magnus-" + name + "=" + num(std::isfinite(wk2) && wk2 > 0.0 ? std::sqrt(wk2) : NAN));
+    extra.push_back("--magnus-" + name + "=" + format_number(std::isfinite(wk2) && wk2 > 0.0 ? std::sqrt(wk2) : NAN));
     if (!is_tippe_top(scene) && state == SpinningState::upright) {
-      extra.push_back("--critical-upright=" + num(report_critical_spin(scene, range)));
-      extra.push_back("--maxwell-klein=" + num(top_sim::maxwell_klein_critical_spin(scene.model)));
+      extra.push_back("--critical-upright=" + format_number(report_critical_spin(scene, range)));
+      extra.push_back("--maxwell-klein=" + format_number(top_sim::maxwell_klein_critical_spin(scene.model)));
     }
   }
 }
 
 // The --state rules (docs/interfaces.md): "" when the arguments fit the scene's top, else the message.
 std::string state_argument_error(const Arguments& args, const top_sim::Scene& scene) {
-  const std::string f = num(scene.model.top.com_offset);
+  const std::string f = format_number(scene.model.top.com_offset);
   if (args.state && args.sweep_alpha)
     return "--sweep-alpha: not with --state (a spinning state is an equilibrium on a level plane only)";
   if (!is_tippe_top(scene)) return "";
@@ -445,8 +453,8 @@ bool run_sweeps(const Arguments& args, const top_sim::Scene& scene, double spin)
   if (args.sweep_alpha) {
     rows = sweep_alpha(scene, spin, *args.sweep_alpha);
     const double located = report_alpha_c(scene, spin, args.sweep_alpha->from);
-    extra.insert(extra.end(), {"--alpha-c=" + num(located),
-                               "--alpha-c-analytic=" + num(top_sim::critical_inclination(scene.model.friction))});
+    const double analytic = top_sim::critical_inclination(scene.model.friction);
+    extra.insert(extra.end(), {"--alpha-c=" + format_number(located), "--alpha-c-analytic=" + format_number(analytic)});
   }
   if (args.sweep_spin) run_spin_sweep(args, scene, rows, extra);
   if (args.plot_path.empty()) return true;
@@ -497,7 +505,8 @@ int main(int argc, char** argv) {
     if (!args.json_path.empty()) written = write_text(args.json_path, analysis_json(r, args.state), "--json");
   } else {
     std::cerr << "top_sim_stability: no " << (args.state ? "spinning " + std::string(top_sim::to_string(*args.state)) : "sleeping")
-              << " state to analyse at alpha " << num(r.alpha) << " rad, spin " << num(spin) << " rad/s: " << r.reason << "\n";
+              << " state to analyse at alpha " << format_number(r.alpha) << " rad, spin " << format_number(spin)
+              << " rad/s: " << r.reason << "\n";
   }
   written = run_sweeps(args, scene, spin) && written;
   if (!r.exists) return 3;

@@ -14,6 +14,8 @@
 #include <string>
 #include <vector>
 
+#include "arguments.hpp"
+#include "command_line.hpp"
 #include "run.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/plane.hpp"
@@ -325,36 +327,40 @@ const char* kUsage =
     "  --out DIR     where perf_*.csv go (default: .)\n"
     "  --quick       shorter runs and fewer points (a smoke run, not for the report)\n";
 
+struct Arguments {
+  Options opt;
+  std::vector<std::string> studies;
+};
+
+// Reads the command line (throws top_sim_cli::BadArgument); false when it asked for --help.
+bool parse_arguments(int argc, char** argv, Arguments& args) {
+  std::vector<std::string> names;
+  top_sim_cli::CommandLine line("unknown argument");
+  line.value("--config", [&](const std::string& v) { args.opt.config = v; })
+      .value("--out", [&](const std::string& v) { args.opt.out = v; })
+      .flag("--quick", [&] { args.opt.quick = true; })
+      .positionals(names);
+  if (!line.parse(argc, argv)) return false;
+  const std::vector<std::string> every = {"work-precision", "stability", "default-choice", "mujoco", "model-choice"};
+  for (const std::string& a : names) {
+    if (a == "all") args.studies = every;  // the studies before it are in every already
+    else if (std::find(every.begin(), every.end(), a) != every.end()) args.studies.push_back(a);
+    else throw top_sim_cli::BadArgument{"unknown argument '" + a + "'"};
+  }
+  if (args.studies.empty()) throw top_sim_cli::BadArgument{"no study given"};
+  return true;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
-  Options opt;
-  opt.config = default_config_dir();
-  opt.out = ".";
-  std::vector<std::string> studies;
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if ((a == "--config" || a == "--out") && i + 1 < argc) {
-      (a == "--config" ? opt.config : opt.out) = argv[++i];
-    } else if (a == "--quick") {
-      opt.quick = true;
-    } else if (a == "-h" || a == "--help") {
-      std::cout << kUsage;
-      return 0;
-    } else if (a == "all") {
-      studies = {"work-precision", "stability", "default-choice", "mujoco", "model-choice"};
-    } else if (a == "work-precision" || a == "stability" || a == "default-choice" || a == "mujoco" ||
-               a == "model-choice") {
-      studies.push_back(a);
-    } else {
-      std::cerr << "top_sim_study: unknown argument '" << a << "'\n" << kUsage;
-      return 2;
-    }
-  }
-  if (studies.empty()) {
-    std::cerr << "top_sim_study: no study given\n" << kUsage;
-    return 2;
-  }
+  Arguments args;
+  args.opt.config = default_config_dir();
+  args.opt.out = ".";
+  if (const auto done = top_sim_cli::parse_command_line("top_sim_study", kUsage, parse_arguments, argc, argv, args))
+    return *done;
+  const Options& opt = args.opt;
+  const std::vector<std::string>& studies = args.studies;
   const std::map<std::string, std::function<void(const Options&)>> run = {
       {"work-precision", work_precision}, {"stability", stability}, {"default-choice", default_choice},
       {"mujoco", mujoco}, {"model-choice", model_choice}};

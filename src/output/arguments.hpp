@@ -1,4 +1,5 @@
-// Command-line arguments of the tools: one error type and one exit path for usage and bad arguments.
+// Command-line arguments of the tools: one error type and one exit path for usage and bad arguments (the tools read
+// their command lines with CommandLine, command_line.hpp; top_sim_bag with positional() below).
 #pragma once
 
 #include <cmath>
@@ -6,6 +7,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 namespace top_sim_cli {
 
@@ -29,6 +31,14 @@ inline void positional(const std::string& a, std::string& slot, const std::strin
   if (!a.empty() && a[0] == '-') throw BadArgument{"unknown option '" + a + "'"};
   if (!slot.empty()) throw BadArgument{"more than one " + what + " ('" + slot + "', '" + a + "')"};
   slot = a;
+}
+
+// The tool's one positional argument (`what`: "scene file"); throws when none (an empty one is none) or more than
+// one was given.
+inline std::string one_positional(const std::vector<std::string>& given, const std::string& what) {
+  if (given.empty() || (given.size() == 1 && given[0].empty())) throw BadArgument{"no " + what + " given"};
+  if (given.size() > 1) throw BadArgument{"more than one " + what + " ('" + given[0] + "', '" + given[1] + "')"};
+  return given[0];
 }
 
 // Runs parse(argc, argv, args), which returns false when it was asked for help. The exit status when the tool is
