@@ -50,7 +50,8 @@ std::string validate_in_kind(const Command& c, const Model& model) {
       return bad("rotor_coupling", *c.rotor_coupling, ">= 0 and finite [N m s]");
   }
   if (c.friction) {
-    const std::string e = validate(*c.friction);
+    std::string e = validate(*c.friction, model.friction);
+    if (e.empty()) e = validate(changed_law(model.friction, *c.friction));
     if (!e.empty()) return e;
   }
   if (c.restitution) {
@@ -63,7 +64,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
   if (c.static_friction || c.friction) {
     // mu_s must stay >= mu(0) of the law in force after the command.
     Model next = model;
-    if (c.friction) next.friction = *c.friction;
+    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
     if (c.static_friction) next.contact.static_friction = *c.static_friction;
     const double mu0 = friction_coefficient(next.friction, 0.0);
     if (c.static_friction) {
@@ -87,7 +88,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
   if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction)) {
     Model next = model;
     if (c.inclination) next.plane = make_plane(*c.inclination, model.plane.gravity);
-    if (c.friction) next.friction = *c.friction;
+    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
     const std::string e = adiabatic_validity(next);
     if (!e.empty()) return e;
   }
@@ -111,7 +112,7 @@ void apply_command(const Command& c, Model& model, StateVector& y) {
   const double spin = shell_spin(y);
   const double rotor_spin = spin + y[idx::nu];
   if (c.inclination) model.plane = make_plane(*c.inclination, model.plane.gravity);
-  if (c.friction) model.friction = *c.friction;
+  if (c.friction) model.friction = changed_law(model.friction, *c.friction);
   if (c.static_friction) model.contact.static_friction = *c.static_friction;
   if (c.restitution) model.contact.restitution = *c.restitution;
   if (c.rotor_coupling) model.top.rotor.coupling = *c.rotor_coupling;

@@ -129,29 +129,31 @@ double number(const py::handle& v, const std::string& key) {
   return v.cast<double>();
 }
 
-// {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table); omitted parameters
-// keep their values in the law in force (top_sim::changed_law, the rule of every adapter).
-FrictionLaw friction_from(const py::handle& value, const FrictionLaw& in_force) {
+// {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table): a change the core applies
+// over the law in force, where omitted parameters keep their values (top_sim::changed_law, the rule of every adapter).
+FrictionChange friction_from(const py::handle& value) {
   if (!py::isinstance<py::dict>(value)) throw py::value_error("friction must be a dict {'law': ..., parameters}");
   FrictionChange change;
   const py::dict d = py::reinterpret_borrow<py::dict>(value);
   const std::string name = d.contains("law") ? py::str(d["law"]).cast<std::string>() : "";
-  if (!parse_friction_law_kind(name, change.kind))
+  FrictionLawKind kind;
+  if (!parse_friction_law_kind(name, kind))
     throw py::value_error("friction.law = '" + name + "': must be one of " + friction_law_names(", "));
+  change.kind = kind;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "law") continue;
     const FrictionParameter* p = find_friction_parameter(key);
-    if (key == kFrictionPointsKey && change.kind == kFrictionPointsLaw) {
+    if (key == kFrictionPointsKey && kind == kFrictionPointsLaw) {
       change.points.emplace();
       for (const auto& point : item.second) change.points->push_back(point.cast<std::pair<double, double>>());
-    } else if (p != nullptr && p->law == change.kind) {
+    } else if (p != nullptr && p->law == kind) {
       change.given.emplace_back(p, number(item.second, "friction." + key));
     } else {
-      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(change.kind));
+      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(kind));
     }
   }
-  return changed_law(in_force, change);
+  return change;
 }
 
 // The number keys of top_sim.Command (command.hpp), named as its fields.
@@ -173,12 +175,12 @@ std::string number_key_names() {
 }
 
 // The keys of top_sim.Command (command.hpp); the core validates the values.
-Command command_from(const py::dict& d, const FrictionLaw& in_force) {
+Command command_from(const py::dict& d) {
   Command c;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "friction") {
-      c.friction = friction_from(item.second, in_force);
+      c.friction = friction_from(item.second);
       continue;
     }
     const double v = number(item.second, key);
@@ -238,12 +240,7 @@ class PySimulator {
   }
 
   void apply(const py::dict& d) {
-    FrictionLaw in_force;
-    {
-      auto lock = own();
-      in_force = sim_->model().friction;
-    }
-    const std::string error = sim_->submit(command_from(d, in_force));
+    const std::string error = sim_->submit(command_from(d));  // submit() may be called from any thread
     if (!error.empty()) throw py::value_error(error);
   }
 

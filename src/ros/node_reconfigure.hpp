@@ -18,7 +18,6 @@ namespace top_sim_ros {
 
 struct ReconfigureHooks {
   std::function<std::string(const top_sim::Command&)> submit;  // to the launch-time top: "" or why refused
-  std::function<top_sim::FrictionLaw()> friction;               // the launch-time top's law in force
   std::function<void(double)> set_real_time_factor;             // called with valid values only
   std::function<void(double)> set_publish_rate;
 };
@@ -36,7 +35,7 @@ class NodeReconfigure {
 
  private:
   void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level);
-  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law);
+  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionChange& change);
   void reconfigure_pacing(top_sim::TopSimConfig& cfg, uint32_t level);
 
   ReconfigureHooks hooks_;

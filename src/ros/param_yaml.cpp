@@ -3,6 +3,7 @@
 #include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "top_sim/friction.hpp"
 
@@ -68,22 +69,25 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
   if (tree.getType() != XmlRpc::XmlRpcValue::TypeStruct) return c;
   if (tree.hasMember("alpha")) c.inclination = number(tree["alpha"], where + "/alpha");
   if (tree.hasMember("spin")) c.spin = number(tree["spin"], where + "/spin");
-  top_sim::FrictionLaw law = model.friction;
+  top_sim::FrictionChange change;  // over the scene's law, applied by the core
   bool friction = false;
   if (tree.hasMember("friction_law")) {
     XmlRpc::XmlRpcValue& v = tree["friction_law"];
+    top_sim::FrictionLawKind kind;
     if (v.getType() != XmlRpc::XmlRpcValue::TypeString ||
-        !top_sim::parse_friction_law_kind(static_cast<std::string>(v), law.kind))
+        !top_sim::parse_friction_law_kind(static_cast<std::string>(v), kind))
       throw std::runtime_error(where + "/friction_law = " + v.toXml() + ": must be one of " +
                                top_sim::friction_law_names(", "));
+    change.kind = kind;
     friction = true;
   }
+  const top_sim::FrictionLawKind kind = change.kind ? *change.kind : model.friction.kind;
   for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
-    if (!tree.hasMember(p.name)) continue;
-    law.*p.member = number(tree[p.name], where + "/" + p.name);
+    if (!tree.hasMember(p.name) || p.law != kind) continue;  // dynamic_reconfigure stores every law's fields
+    change.given.emplace_back(&p, number(tree[p.name], where + "/" + p.name));
     friction = true;
   }
-  if (friction) c.friction = law;
+  if (friction) c.friction = std::move(change);
   finite_start(tree, model, where, c);
   return c;
 }

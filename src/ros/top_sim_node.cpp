@@ -167,7 +167,7 @@ class TopSimNode {
           if (error.empty() && shown && reconfigure_) reconfigure_->record_for_push(c);
           return error;
         },
-        [&sim] { return sim.model().friction; }, rejections_);
+        rejections_);
     return t;
   }
 
@@ -189,7 +189,6 @@ class TopSimNode {
         rejections_.warn("dynamic_reconfigure rejected: " + error, ros::WallTime::now().toSec());
       return error;
     };
-    hooks.friction = [this] { return tops_.launch_top().sim().model().friction; };
     hooks.set_real_time_factor = [this](double f) {
       params_.real_time_factor = f;
       const double wall = ros::WallTime::now().toSec();

@@ -95,3 +95,43 @@ TEST(Command, FiniteContactFieldsNonNegativeAndNotUnderTheReducedModel) {
   reduced.kind = ModelKind::adiabatic;
   EXPECT_TRUE(refused(c, reduced, "rolling_resistance", "adiabatic or auto"));
 }
+
+// A friction change is applied by the core over the law in force: the parameters it names change, the others
+// (of this law and of the others) keep their values; a parameter of another law is refused, naming both.
+TEST(Command, FrictionChangeAppliesOverTheLawInForce) {
+  Model m = model_of("default");
+  ASSERT_EQ(m.friction.kind, FrictionLawKind::paper);
+  const FrictionLaw before = m.friction;
+  Command c;
+  c.friction = FrictionChange{};
+  c.friction->given.emplace_back(find_friction_parameter("mu_c"), 0.5 * before.mu_c);  // no kind: the law's
+  ASSERT_EQ(validate(c, m), "");
+  StateVector y{};
+  y[idx::f + 2] = 1.0;  // an upright top at rest: a pure law change touches no state
+  const StateVector y_before = y;
+  apply_command(c, m, y);
+  EXPECT_EQ(m.friction.kind, FrictionLawKind::paper);
+  EXPECT_EQ(m.friction.mu_c, 0.5 * before.mu_c);
+  EXPECT_EQ(m.friction.s_c, before.s_c) << "not named: the law in force's";
+  EXPECT_EQ(m.friction.mu, before.mu) << "another law's parameter: kept";
+  EXPECT_EQ(y, y_before);
+
+  Command coulomb;
+  coulomb.friction = FrictionChange{FrictionLawKind::coulomb, {}, std::nullopt};
+  ASSERT_EQ(validate(coulomb, m), "");
+  apply_command(coulomb, m, y);
+  EXPECT_EQ(m.friction.kind, FrictionLawKind::coulomb);
+  EXPECT_EQ(m.friction.mu, before.mu) << "no parameter given: Coulomb with the mu in force";
+
+  Command foreign;
+  foreign.friction = FrictionChange{};
+  foreign.friction->given.emplace_back(find_friction_parameter("s_c"), 0.5);
+  EXPECT_EQ(validate(foreign, m), "friction.s_c: law coulomb reads mu");
+  foreign.friction->given.clear();
+  foreign.friction->points = std::vector<std::pair<double, double>>{{0.0, 0.1}, {1.0, 0.2}};
+  EXPECT_EQ(validate(foreign, m), "friction.points: law coulomb reads mu");
+  Command negative;
+  negative.friction = FrictionChange{};
+  negative.friction->given.emplace_back(find_friction_parameter("mu"), -0.1);
+  EXPECT_TRUE(refused(negative, m, "friction.mu", ">= 0"));
+}
