@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "top_sim/command_fields.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/scene.hpp"
@@ -156,25 +157,7 @@ FrictionChange friction_from(const py::handle& value) {
   return change;
 }
 
-// The number keys of top_sim.Command (command.hpp), named as its fields.
-struct NumberKey {
-  const char* name;
-  std::optional<double> Command::*member;
-};
-constexpr NumberKey kNumberKeys[] = {
-    {"inclination", &Command::inclination},         {"spin", &Command::spin},
-    {"rotor_spin", &Command::rotor_spin},           {"rotor_coupling", &Command::rotor_coupling},
-    {"static_friction", &Command::static_friction}, {"restitution", &Command::restitution},
-    {"patch_radius", &Command::patch_radius},       {"rolling_resistance", &Command::rolling_resistance},
-    {"spin_drag", &Command::spin_drag},             {"drag", &Command::drag}};
-
-std::string number_key_names() {
-  std::string names;
-  for (const NumberKey& k : kNumberKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
-  return names;
-}
-
-// The keys of top_sim.Command (command.hpp); the core validates the values.
+// The keys of the command schema (command_fields.hpp) and friction; the core validates the values.
 Command command_from(const py::dict& d) {
   Command c;
   for (const auto& item : d) {
@@ -183,12 +166,10 @@ Command command_from(const py::dict& d) {
       c.friction = friction_from(item.second);
       continue;
     }
-    const double v = number(item.second, key);
-    const auto field = std::find_if(std::begin(kNumberKeys), std::end(kNumberKeys),
-                                    [&key](const NumberKey& k) { return key == k.name; });
-    if (field == std::end(kNumberKeys))
-      throw py::key_error("unknown command key '" + key + "' (allowed: " + number_key_names() + ", friction)");
-    c.*(field->member) = v;
+    const CommandField* field = find_command_field(key);
+    if (field == nullptr)
+      throw py::key_error("unknown command key '" + key + "' (allowed: " + command_field_names() + ", friction)");
+    c.*(field->member) = number(item.second, key);
   }
   return c;
 }
@@ -319,6 +300,23 @@ auto reader(R (Simulator::*get)() const) {
   return [get](PySimulator& p) { return p.read([get](Simulator& s) { return (s.*get)(); }); };
 }
 
+py::list command_field_list() {
+  py::list out;
+  for (const CommandField& f : command_fields()) {
+    py::dict d;
+    d["name"] = f.name;
+    d["unit"] = f.unit;
+    d["lower"] = f.range.lower;
+    d["upper"] = f.range.upper;
+    d["lower_open"] = f.range.lower_open;
+    d["upper_open"] = f.range.upper_open;
+    d["range"] = f.range_text;
+    d["doc"] = f.doc;
+    out.append(d);
+  }
+  return out;
+}
+
 void bind_scenes(py::module_& m) {
   py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
   py::class_<Scene>(m, "Scene", "A validated scene (load it with top_sim.load_scene)")
@@ -333,6 +331,9 @@ void bind_scenes(py::module_& m) {
   m.def("load_scene", &scene_from, py::arg("source"),
         "A scene from a YAML file path, a scene name of the installed data ('default'), or a dict with the keys "
         "of a scene file; raises top_sim.SceneError naming the file, key, value and allowed range.");
+  m.def("command_fields", &command_field_list,
+        "The command schema (command_fields.hpp): one dict per field of Simulator.apply with its name, unit, limits "
+        "(lower, upper, lower_open, upper_open; +-inf = none), the range as errors give it, and a doc line.");
   m.def("config_dir", &default_config_dir, "The data directory (tops/, planes/, scenes/) the module uses.");
   m.def("stationary_state",
         [](const py::object& source, const py::object& spin) {

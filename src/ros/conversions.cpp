@@ -5,6 +5,7 @@
 #include <sstream>
 #include <utility>
 
+#include "top_sim/command_fields.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/trajectory.hpp"
@@ -218,16 +219,11 @@ std::string friction_change(const top_sim::TopCommand& msg, top_sim::FrictionCha
 top_sim::Command command_from_message(const top_sim::TopCommand& msg, std::string& error) {
   top_sim::Command c;
   error.clear();
-  if (msg.set_inclination) c.inclination = msg.inclination;
-  if (msg.set_spin) c.spin = msg.spin;
-  if (msg.set_rotor_spin) c.rotor_spin = msg.rotor_spin;
-  if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
-  if (msg.set_static_friction) c.static_friction = msg.static_friction;  // validated by the core (>= mu(0))
-  if (msg.set_restitution) c.restitution = msg.restitution;              // validated by the core ([0, 1])
-  if (msg.set_patch_radius) c.patch_radius = msg.patch_radius;           // these four: validated by the core (>= 0)
-  if (msg.set_rolling_resistance) c.rolling_resistance = msg.rolling_resistance;
-  if (msg.set_spin_drag) c.spin_drag = msg.spin_drag;
-  if (msg.set_drag) c.drag = msg.drag;
+  // The schema's fields (command_fields.hpp), named alike in the message; the core validates their values.
+#define TOP_SIM_COPY_SET_FIELD(name) \
+  if (msg.set_##name) c.name = msg.name;
+  TOP_SIM_COMMAND_FIELDS(TOP_SIM_COPY_SET_FIELD)
+#undef TOP_SIM_COPY_SET_FIELD
   if (msg.set_friction) {
     top_sim::FrictionChange change;
     error = friction_change(msg, change);
