@@ -61,18 +61,13 @@ const FiniteField kFiniteFields[] = {
 }  // namespace
 
 NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene,
-                                 const top_sim::Command& start, double real_time_factor, double publish_rate,
-                                 ReconfigureHooks hooks)
+                                 double real_time_factor, double publish_rate, ReconfigureHooks hooks)
     : hooks_(std::move(hooks)) {
   server_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(mutex_, pnh);
-  config_.alpha = start.inclination ? *start.inclination : scene.model.plane.inclination;
-  config_.spin = start.spin ? *start.spin : scene.initial.spin;
   config_.real_time_factor = real_time_factor;
   config_.publish_rate = publish_rate;
-  friction_to_config(start.friction ? top_sim::changed_law(scene.model.friction, *start.friction)
-                                    : scene.model.friction, config_);
-  for (const FiniteField& f : kFiniteFields)
-    config_.*f.config = start.*f.command ? *(start.*f.command) : f.in_model(scene.model);
+  record_scene_for_push(scene);
+  dirty_ = false;  // pushed now
   server_->updateConfig(config_);
   server_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
   // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.

@@ -24,9 +24,10 @@ struct ReconfigureHooks {
 
 class NodeReconfigure {
  public:
-  // Shows the values in force at start: the scene's, or `start` (dynamic_reconfigure's values found under ~).
-  NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, const top_sim::Command& start,
-                  double real_time_factor, double publish_rate, ReconfigureHooks hooks);
+  // Shows the values in force at start: the launch-time top's scene's (dynamic_reconfigure's values found under ~
+  // are folded into it).
+  NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, double real_time_factor,
+                  double publish_rate, ReconfigureHooks hooks);
 
   // Records the values an accepted command (from any source) or a reset's scene put in force, and marks them for the
   // slow timer to push to dynamic_reconfigure (never on a command's path).

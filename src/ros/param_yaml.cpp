@@ -6,6 +6,8 @@
 #include <utility>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/state.hpp"
+#include "top_sim/stationary.hpp"
 
 namespace top_sim_ros {
 
@@ -90,6 +92,20 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
   if (friction) c.friction = std::move(change);
   finite_start(tree, model, where, c);
   return c;
+}
+
+top_sim::Scene start_scene(top_sim::Scene scene, const top_sim::Command& start) {
+  top_sim::Command model_part = start;
+  model_part.spin.reset();  // the initial state's, below
+  top_sim::StateVector unused{};
+  unused[top_sim::idx::f + 2] = 1.0;  // the model's fields do not read the state
+  top_sim::apply_command(model_part, scene.model, unused);
+  if (start.spin) scene.initial.spin = *start.spin;
+  if (scene.initial.start == top_sim::StartKind::stationary) {
+    const top_sim::StationaryState st = top_sim::stationary_state(scene.model, scene.initial.spin);
+    if (!st.exists) throw std::runtime_error("initial.start 'stationary' is impossible at the start values: " + st.reason);
+  }
+  return scene;
 }
 
 }  // namespace top_sim_ros

@@ -23,4 +23,9 @@ const std::set<std::string>& reconfigure_physics_keys();
 // The caller validates the command through the core like any other.
 top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& model, const std::string& where);
 
+// The launch-time top's scene: `scene` with a validated start command folded in (its model fields applied by the core
+// as a command would apply them, its spin as initial.spin), so the top starts there and ~reset returns there without
+// a command. Throws std::runtime_error when a stationary start has no sleeping state at the folded values.
+top_sim::Scene start_scene(top_sim::Scene scene, const top_sim::Command& start);
+
 }  // namespace top_sim_ros
