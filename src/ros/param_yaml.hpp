@@ -8,6 +8,7 @@
 
 #include "top_sim/command.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/scene.hpp"
 
 namespace top_sim_ros {
 

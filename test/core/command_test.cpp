@@ -10,6 +10,7 @@
 #include "test_util.hpp"
 #include "top_sim/command.hpp"
 #include "top_sim/command_fields.hpp"
+#include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
