@@ -85,8 +85,10 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
   }
   const top_sim::FrictionLawKind kind = change.kind ? *change.kind : model.friction.kind;
   for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
-    if (!tree.hasMember(p.name) || p.law != kind) continue;  // dynamic_reconfigure stores every law's fields
-    change.given.emplace_back(&p, number(tree[p.name], where + "/" + p.name));
+    if (!tree.hasMember(p.name)) continue;
+    const double v = number(tree[p.name], where + "/" + p.name);  // every law's key is checked
+    if (p.law != kind) continue;  // dynamic_reconfigure stores every law's fields: only this law's are the change
+    change.given.emplace_back(&p, v);
     friction = true;
   }
   if (friction) c.friction = std::move(change);
