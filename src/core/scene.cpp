@@ -388,7 +388,7 @@ std::vector<std::pair<double, double>> read_friction_points(Section& s, const st
   return points;
 }
 
-// An event's `friction:` as a change over the law in force: `law` (default: the law in force's) and the parameters
+// An event's `friction:` as a change over the law in force: `law` (default: the scene's law) and the parameters
 // of that law it names (a table's points), as TopCommand and Python's apply give them.
 FrictionChange read_friction_change(Section& f, const std::string& file, FrictionLawKind in_force) {
   FrictionChange change;
