@@ -16,7 +16,7 @@ endif()
 # The library's public headers, named one by one: a header in include/top_sim is installed only when listed here
 # (test instrumentation and internal steppers live in src/core). Each compiles on its own (header_check.cmake).
 set(TOP_SIM_INSTALLED_HEADERS
-  adiabatic.hpp angular_momentum.hpp auto_model.hpp command.hpp contact.hpp contact_modes.hpp cpu_time.hpp
+  adiabatic.hpp angular_momentum.hpp auto_model.hpp command.hpp command_fields.hpp contact.hpp contact_modes.hpp cpu_time.hpp
   data_path.hpp dynamics.hpp energy.hpp finite_contact.hpp fit.hpp flight.hpp format.hpp friction.hpp impact.hpp
   integrators.hpp limits.hpp model.hpp nutation.hpp orientation.hpp pacing.hpp plane.hpp pose.hpp regime.hpp
   scene.hpp simulator.hpp snapshot.hpp stability.hpp state.hpp stationary.hpp trajectory.hpp)

@@ -8,7 +8,9 @@ endif()
 
 add_executable(top_sim_teleop src/ros/top_sim_teleop.cpp)
 # Generated message headers live in the devel space.
-target_include_directories(top_sim_teleop PRIVATE ${CATKIN_DEVEL_PREFIX}/include ${catkin_INCLUDE_DIRS})
+# The core's include/ for limits.hpp only (header-only constants: the teleop does not link the core).
+target_include_directories(top_sim_teleop PRIVATE ${CATKIN_DEVEL_PREFIX}/include ${catkin_INCLUDE_DIRS}
+  ${CMAKE_CURRENT_SOURCE_DIR}/include)
 target_link_libraries(top_sim_teleop ${catkin_LIBRARIES})
 add_dependencies(top_sim_teleop ${${PROJECT_NAME}_EXPORTED_TARGETS} ${catkin_EXPORTED_TARGETS})
 

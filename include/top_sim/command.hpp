@@ -16,7 +16,7 @@ struct Command {
   std::optional<double> spin;            // shell omega . f_hat [rad/s]; transverse part and rotor Omega kept
   std::optional<double> rotor_spin;      // absolute rotor spin Omega [rad/s]
   std::optional<double> rotor_coupling;  // bearing coupling c [N m s]
-  std::optional<FrictionLaw> friction;   // replaces the friction law
+  std::optional<FrictionChange> friction;  // over the law in force (changed_law): its kind and/or parameters
   std::optional<double> static_friction; // mu_s (friction.static), >= mu(0) of the law in force
   std::optional<double> restitution;     // e_N (contact.restitution) in [0, 1]
   // Finite contact (physics.md section 12), each >= 0: a fixed patch radius a [m] (replaces hertz), rolling

@@ -101,16 +101,20 @@ double friction_slope(const FrictionLaw& law, double s);
 // Empty when the parameters are admissible, else "field = value: allowed range".
 std::string validate(const FrictionLaw& law);
 
-// A change of friction law as a command gives it: the law and the parameters it names (and a table's points).
+// A change of friction law as a command carries it: the law (absent: the law in force's) and the parameters it
+// names (and a table's points). The core applies it to the law in force at the step boundary (apply_command).
 struct FrictionChange {
-  FrictionLawKind kind = FrictionLawKind::paper;
+  std::optional<FrictionLawKind> kind;
   std::vector<std::pair<const FrictionParameter*, double>> given;
   std::optional<std::vector<std::pair<double, double>>> points;
 };
 
-// The one rule of every adapter (TopCommand, Python's apply, dynamic_reconfigure): the parameters a change does not
-// name keep their values in the law in force (a table keeps its points unless new ones are given).
+// The one rule of every change (TopCommand, Python's apply, dynamic_reconfigure, scene events): the parameters a
+// change does not name keep their values in the law in force (a table keeps its points unless new ones are given).
 FrictionLaw changed_law(const FrictionLaw& in_force, const FrictionChange& change);
+
+// Empty when every parameter the change names belongs to the law it leads to, else "friction.name: ...".
+std::string validate(const FrictionChange& change, const FrictionLaw& in_force);
 
 // True when the law gives mu(s) < 0 somewhere on [0, 1] (so the clamp is active there).
 bool clamp_is_active(const FrictionLaw& law);

@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/command_fields.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
@@ -13,57 +14,48 @@
 namespace top_sim {
 
 namespace {
+
 std::string bad(const char* field, double value, const char* range) { return range_message(field, value, range); }
-}  // namespace
 
-namespace {
+// The schema's model-independent limits (command_fields.hpp).
+std::string validate_ranges(const Command& c) {
+  for (const CommandField& f : command_fields()) {
+    const std::optional<double>& v = c.*f.member;
+    if (v && !f.range.admits(*v)) return bad(f.name, *v, f.range_text.c_str());
+  }
+  return "";
+}
 
-// physics.md section 12's run-time fields: each >= 0, and none > 0 under the reduced model.
+// physics.md section 12's run-time fields: none > 0 under the reduced model.
 std::string validate_finite_contact(const Command& c, const Model& model) {
-  const std::pair<const char*, const std::optional<double>*> finite_fields[] = {
-      {"patch_radius", &c.patch_radius}, {"rolling_resistance", &c.rolling_resistance},
-      {"spin_drag", &c.spin_drag}, {"drag", &c.drag}};
-  for (const auto& [name, value] : finite_fields) {
-    if (!*value) continue;
-    const double v = **value;
-    if (!std::isfinite(v) || v < 0.0) return bad(name, v, ">= 0 and finite");
-    if (v > 0.0 && (model.kind == ModelKind::adiabatic || model.automatic.enabled))
-      return bad(name, v, "0 with model.kind adiabatic or auto (the reduced model has no finite contact or air)");
+  if (model.kind != ModelKind::adiabatic && !model.automatic.enabled) return "";
+  for (const CommandField& f : command_fields()) {
+    const bool finite_contact = f.member == &Command::patch_radius || f.member == &Command::rolling_resistance ||
+                                f.member == &Command::spin_drag || f.member == &Command::drag;
+    if (finite_contact && c.*f.member && *(c.*f.member) > 0.0)
+      return bad(f.name, *(c.*f.member), "0 with model.kind adiabatic or auto (the reduced model has no finite "
+                                         "contact or air)");
   }
   return "";
 }
 
 std::string validate_in_kind(const Command& c, const Model& model) {
-  if (c.inclination) {
-    const double a = *c.inclination;
-    if (!admissible_inclination(a)) return bad("inclination", a, "finite with |alpha| < pi/2 rad");
-  }
-  static const std::string spin_range = "finite with |spin| <= " + format_number(kMaxSpin) + " [rad/s] (top_sim's spin limit)";
-  if (c.spin && !(std::abs(*c.spin) <= kMaxSpin)) return bad("spin", *c.spin, spin_range.c_str());
-  if (c.rotor_spin) {
-    if (!model.top.has_rotor) return "rotor_spin: this top has no rotor (top.rotor is not configured)";
-    if (!(std::abs(*c.rotor_spin) <= kMaxSpin)) return bad("rotor_spin", *c.rotor_spin, spin_range.c_str());
-  }
-  if (c.rotor_coupling) {
-    if (!model.top.has_rotor) return "rotor_coupling: this top has no rotor (top.rotor is not configured)";
-    if (!std::isfinite(*c.rotor_coupling) || *c.rotor_coupling < 0.0)
-      return bad("rotor_coupling", *c.rotor_coupling, ">= 0 and finite [N m s]");
-  }
+  if (std::string e = validate_ranges(c); !e.empty()) return e;
+  if (c.rotor_spin && !model.top.has_rotor) return "rotor_spin: this top has no rotor (top.rotor is not configured)";
+  if (c.rotor_coupling && !model.top.has_rotor)
+    return "rotor_coupling: this top has no rotor (top.rotor is not configured)";
   if (c.friction) {
-    const std::string e = validate(*c.friction);
+    std::string e = validate(*c.friction, model.friction);
+    if (e.empty()) e = validate(changed_law(model.friction, *c.friction));
     if (!e.empty()) return e;
   }
-  if (c.restitution) {
-    const double e = *c.restitution;
-    if (!std::isfinite(e) || e < 0.0 || e > 1.0) return bad("restitution", e, "in [0, 1]");
-    if (e > 0.0 && !has_contact_modes(model))
-      return bad("restitution", e, "0 with model.normal_force static or model.kind adiabatic (permanent contact)");
-  }
+  if (c.restitution && *c.restitution > 0.0 && !has_contact_modes(model))
+    return bad("restitution", *c.restitution, "0 with model.normal_force static or model.kind adiabatic (permanent contact)");
   if (std::string e = validate_finite_contact(c, model); !e.empty()) return e;
   if (c.static_friction || c.friction) {
     // mu_s must stay >= mu(0) of the law in force after the command.
     Model next = model;
-    if (c.friction) next.friction = *c.friction;
+    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
     if (c.static_friction) next.contact.static_friction = *c.static_friction;
     const double mu0 = friction_coefficient(next.friction, 0.0);
     if (c.static_friction) {
@@ -87,7 +79,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
   if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction)) {
     Model next = model;
     if (c.inclination) next.plane = make_plane(*c.inclination, model.plane.gravity);
-    if (c.friction) next.friction = *c.friction;
+    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
     const std::string e = adiabatic_validity(next);
     if (!e.empty()) return e;
   }
@@ -111,7 +103,7 @@ void apply_command(const Command& c, Model& model, StateVector& y) {
   const double spin = shell_spin(y);
   const double rotor_spin = spin + y[idx::nu];
   if (c.inclination) model.plane = make_plane(*c.inclination, model.plane.gravity);
-  if (c.friction) model.friction = *c.friction;
+  if (c.friction) model.friction = changed_law(model.friction, *c.friction);
   if (c.static_friction) model.contact.static_friction = *c.static_friction;
   if (c.restitution) model.contact.restitution = *c.restitution;
   if (c.rotor_coupling) model.top.rotor.coupling = *c.rotor_coupling;

@@ -31,10 +31,22 @@ std::string ParameterRange::text() const {
 
 FrictionLaw changed_law(const FrictionLaw& in_force, const FrictionChange& change) {
   FrictionLaw law = in_force;
-  law.kind = change.kind;
+  if (change.kind) law.kind = *change.kind;
   for (const auto& [parameter, value] : change.given) law.*(parameter->member) = value;
   if (change.points) law.points = *change.points;
   return law;
+}
+
+std::string validate(const FrictionChange& change, const FrictionLaw& in_force) {
+  const FrictionLawKind kind = change.kind ? *change.kind : in_force.kind;
+  for (const auto& [parameter, value] : change.given)
+    if (parameter->law != kind)
+      return std::string("friction.") + parameter->name + ": law " + to_string(kind) + " reads " +
+             friction_parameter_names(kind);
+  if (change.points && kind != kFrictionPointsLaw)
+    return std::string("friction.") + kFrictionPointsKey + ": law " + to_string(kind) + " reads " +
+           friction_parameter_names(kind);
+  return "";
 }
 
 const FrictionParameter* find_friction_parameter(const std::string& name) {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "top_sim/adiabatic.hpp"
+#include "top_sim/command_fields.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/format.hpp"
@@ -373,7 +374,44 @@ IntegratorSettings read_integrator(Section& root, const std::string& file) {
   return is;
 }
 
-// One entry of `events:`, validated as a command against the scene's model; `last_t` keeps them in time order.
+std::vector<std::pair<double, double>> read_friction_points(Section& s, const std::string& file) {
+  std::vector<std::pair<double, double>> points;
+  const YAML::Node pts = s.raw(kFrictionPointsKey);
+  const std::string key = join(s.path(), kFrictionPointsKey);
+  if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    const std::string k = key + "[" + std::to_string(i) + "]";
+    if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
+    points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
+                        s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
+  }
+  return points;
+}
+
+// An event's `friction:` as a change over the law in force: `law` (default: the scene's law) and the parameters
+// of that law it names (a table's points), as TopCommand and Python's apply give them.
+FrictionChange read_friction_change(Section& f, const std::string& file, FrictionLawKind in_force) {
+  FrictionChange change;
+  if (f.has("law")) {
+    std::vector<std::string> names;
+    for (const FrictionLawName& n : kFrictionLawNames) names.push_back(n.name);
+    FrictionLawKind kind;
+    parse_friction_law_kind(f.word("law", "", names), kind);  // word() admitted only the laws' names
+    change.kind = kind;
+  }
+  const FrictionLawKind kind = change.kind ? *change.kind : in_force;
+  for (const FrictionParameter& p : kFrictionParameters) {
+    if (p.law != kind || !f.has(p.name)) continue;
+    const ParameterRange range = p.range;
+    change.given.emplace_back(&p, f.number(p.name, 0.0, [range](double v) { return range.admits(v); }, range.text()));
+  }
+  if (kind == kFrictionPointsLaw && f.has(kFrictionPointsKey)) change.points = read_friction_points(f, file);
+  f.finish();  // another law's parameter is an unknown key here
+  return change;
+}
+
+// One entry of `events:`: any field of the command schema (command_fields.hpp) and `friction:`, validated as a
+// command against the scene's model; `last_t` keeps them in time order.
 ScriptedEvent read_event(const YAML::Node& node, const std::string& file, const std::string& path, const Model& model,
                          double& last_t) {
   Section e(node, file, path);
@@ -384,12 +422,17 @@ ScriptedEvent read_event(const YAML::Node& node, const std::string& file, const 
                      ">= 0 and >= the previous event's t = " + fmt(previous) + " [s]");
   last_t = event.t;
   Command& c = event.command;
-  if (e.has("inclination")) c.inclination = e.number("inclination", 0.0, admissible_inclination, "in (-pi/2, pi/2) [rad]");
-  if (e.has("spin")) c.spin = e.number("spin", 0.0, spin_range, kSpinRange);
-  if (e.has("rotor_spin")) c.rotor_spin = e.number("rotor_spin", 0.0, spin_range, kSpinRange);
-  if (e.has("rotor_coupling")) c.rotor_coupling = e.number("rotor_coupling", 0.0, non_negative, ">= 0 [N m s]");
+  for (const CommandField& f : command_fields()) {
+    if (!e.has(f.name)) continue;
+    const ParameterRange range = f.range;
+    c.*f.member = e.number(f.name, 0.0, [range](double v) { return range.admits(v); }, f.range_text);
+  }
+  if (e.has("friction")) {
+    Section f(e.raw("friction"), file, join(path, "friction"));
+    c.friction = read_friction_change(f, file, model.friction.kind);
+  }
   e.finish();
-  if (c.empty()) throw SceneError(file, path, "changes nothing (give inclination, spin, rotor_spin or rotor_coupling)");
+  if (c.empty()) throw SceneError(file, path, "changes nothing (give one of " + command_field_names() + ", friction)");
   const std::string err = validate(c, model);
   if (!err.empty()) throw SceneError(file, path, err);
   return event;
@@ -417,20 +460,6 @@ static void reject_foreign_parameter(Section& s, const std::string& file, const 
                    show(s.raw(key)) + " is not a parameter of law " + name + " (it belongs to law " +
                        to_string(owner) + "); law " + name + " takes: " + friction_parameter_names(kind) +
                        ", regularization_speed, static, young_modulus, poisson_ratio");
-}
-
-static std::vector<std::pair<double, double>> read_friction_points(Section& s, const std::string& file) {
-  std::vector<std::pair<double, double>> points;
-  const YAML::Node pts = s.raw(kFrictionPointsKey);
-  const std::string key = join(s.path(), kFrictionPointsKey);
-  if (!pts || !pts.IsSequence()) throw SceneError(file, key, "required for law table: a list of [s, mu] pairs");
-  for (std::size_t i = 0; i < pts.size(); ++i) {
-    const std::string k = key + "[" + std::to_string(i) + "]";
-    if (!pts[i].IsSequence() || pts[i].size() != 2) throw SceneError(file, k, show(pts[i]) + " must be [s, mu]");
-    points.emplace_back(s.to_number(pts[i][0], k + "[0]", finite, "a number in [0, 1]"),
-                        s.to_number(pts[i][1], k + "[1]", finite, "a finite number"));
-  }
-  return points;
 }
 
 static FrictionLaw read_friction_law(Section& s, const std::string& file, double& v_eps,

@@ -15,6 +15,7 @@
 #include <optional>
 #include <string>
 
+#include "top_sim/command_fields.hpp"
 #include "top_sim/data_path.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/scene.hpp"
@@ -129,64 +130,46 @@ double number(const py::handle& v, const std::string& key) {
   return v.cast<double>();
 }
 
-// {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table); omitted parameters
-// keep their values in the law in force (top_sim::changed_law, the rule of every adapter).
-FrictionLaw friction_from(const py::handle& value, const FrictionLaw& in_force) {
+// {"law": name, parameter: value, ...} with the scene file's keys (friction.hpp's table): a change the core applies
+// over the law in force, where omitted parameters keep their values (top_sim::changed_law, the rule of every adapter).
+FrictionChange friction_from(const py::handle& value) {
   if (!py::isinstance<py::dict>(value)) throw py::value_error("friction must be a dict {'law': ..., parameters}");
   FrictionChange change;
   const py::dict d = py::reinterpret_borrow<py::dict>(value);
   const std::string name = d.contains("law") ? py::str(d["law"]).cast<std::string>() : "";
-  if (!parse_friction_law_kind(name, change.kind))
+  FrictionLawKind kind;
+  if (!parse_friction_law_kind(name, kind))
     throw py::value_error("friction.law = '" + name + "': must be one of " + friction_law_names(", "));
+  change.kind = kind;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "law") continue;
     const FrictionParameter* p = find_friction_parameter(key);
-    if (key == kFrictionPointsKey && change.kind == kFrictionPointsLaw) {
+    if (key == kFrictionPointsKey && kind == kFrictionPointsLaw) {
       change.points.emplace();
       for (const auto& point : item.second) change.points->push_back(point.cast<std::pair<double, double>>());
-    } else if (p != nullptr && p->law == change.kind) {
+    } else if (p != nullptr && p->law == kind) {
       change.given.emplace_back(p, number(item.second, "friction." + key));
     } else {
-      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(change.kind));
+      throw py::key_error("friction." + key + ": law " + name + " reads " + friction_parameter_names(kind));
     }
   }
-  return changed_law(in_force, change);
+  return change;
 }
 
-// The number keys of top_sim.Command (command.hpp), named as its fields.
-struct NumberKey {
-  const char* name;
-  std::optional<double> Command::*member;
-};
-constexpr NumberKey kNumberKeys[] = {
-    {"inclination", &Command::inclination},         {"spin", &Command::spin},
-    {"rotor_spin", &Command::rotor_spin},           {"rotor_coupling", &Command::rotor_coupling},
-    {"static_friction", &Command::static_friction}, {"restitution", &Command::restitution},
-    {"patch_radius", &Command::patch_radius},       {"rolling_resistance", &Command::rolling_resistance},
-    {"spin_drag", &Command::spin_drag},             {"drag", &Command::drag}};
-
-std::string number_key_names() {
-  std::string names;
-  for (const NumberKey& k : kNumberKeys) names += std::string(names.empty() ? "" : ", ") + k.name;
-  return names;
-}
-
-// The keys of top_sim.Command (command.hpp); the core validates the values.
-Command command_from(const py::dict& d, const FrictionLaw& in_force) {
+// The keys of the command schema (command_fields.hpp) and friction; the core validates the values.
+Command command_from(const py::dict& d) {
   Command c;
   for (const auto& item : d) {
     const std::string key = py::str(item.first).cast<std::string>();
     if (key == "friction") {
-      c.friction = friction_from(item.second, in_force);
+      c.friction = friction_from(item.second);
       continue;
     }
-    const double v = number(item.second, key);
-    const auto field = std::find_if(std::begin(kNumberKeys), std::end(kNumberKeys),
-                                    [&key](const NumberKey& k) { return key == k.name; });
-    if (field == std::end(kNumberKeys))
-      throw py::key_error("unknown command key '" + key + "' (allowed: " + number_key_names() + ", friction)");
-    c.*(field->member) = v;
+    const CommandField* field = find_command_field(key);
+    if (field == nullptr)
+      throw py::key_error("unknown command key '" + key + "' (allowed: " + command_field_names() + ", friction)");
+    c.*(field->member) = number(item.second, key);
   }
   return c;
 }
@@ -238,12 +221,7 @@ class PySimulator {
   }
 
   void apply(const py::dict& d) {
-    FrictionLaw in_force;
-    {
-      auto lock = own();
-      in_force = sim_->model().friction;
-    }
-    const std::string error = sim_->submit(command_from(d, in_force));
+    const std::string error = sim_->submit(command_from(d));  // submit() may be called from any thread
     if (!error.empty()) throw py::value_error(error);
   }
 
@@ -322,6 +300,23 @@ auto reader(R (Simulator::*get)() const) {
   return [get](PySimulator& p) { return p.read([get](Simulator& s) { return (s.*get)(); }); };
 }
 
+py::list command_field_list() {
+  py::list out;
+  for (const CommandField& f : command_fields()) {
+    py::dict d;
+    d["name"] = f.name;
+    d["unit"] = f.unit;
+    d["lower"] = f.range.lower;
+    d["upper"] = f.range.upper;
+    d["lower_open"] = f.range.lower_open;
+    d["upper_open"] = f.range.upper_open;
+    d["range"] = f.range_text;
+    d["doc"] = f.doc;
+    out.append(d);
+  }
+  return out;
+}
+
 void bind_scenes(py::module_& m) {
   py::register_exception<SceneError>(m, "SceneError", PyExc_ValueError);
   py::class_<Scene>(m, "Scene", "A validated scene (load it with top_sim.load_scene)")
@@ -336,6 +331,9 @@ void bind_scenes(py::module_& m) {
   m.def("load_scene", &scene_from, py::arg("source"),
         "A scene from a YAML file path, a scene name of the installed data ('default'), or a dict with the keys "
         "of a scene file; raises top_sim.SceneError naming the file, key, value and allowed range.");
+  m.def("command_fields", &command_field_list,
+        "The command schema (command_fields.hpp): one dict per field of Simulator.apply with its name, unit, limits "
+        "(lower, upper, lower_open, upper_open; +-inf = none), the range as errors give it, and a doc line.");
   m.def("config_dir", &default_config_dir, "The data directory (tops/, planes/, scenes/) the module uses.");
   m.def("stationary_state",
         [](const py::object& source, const py::object& spin) {

@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <cmath>
 #include <sstream>
+#include <utility>
 
+#include "top_sim/command_fields.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/trajectory.hpp"
@@ -185,19 +187,21 @@ double parameter_of(const top_sim::TopCommand& msg, const std::string& name) {
 
 // The law and the parameters a TopCommand gives: those named in friction_given, else the law's nonzero ones.
 std::string friction_change(const top_sim::TopCommand& msg, top_sim::FrictionChange& change) {
-  if (!top_sim::parse_friction_law_kind(msg.friction_law, change.kind))
+  top_sim::FrictionLawKind kind;
+  if (!top_sim::parse_friction_law_kind(msg.friction_law, kind))
     return "friction_law = '" + msg.friction_law + "': must be one of " + top_sim::friction_law_names(", ");
   for (const std::string& name : msg.friction_given) {
     const top_sim::FrictionParameter* p = top_sim::find_friction_parameter(name);
-    if (p == nullptr || p->law != change.kind)
+    if (p == nullptr || p->law != kind)
       return "friction_given: '" + name + "': the " + msg.friction_law + " law reads " +
-             top_sim::friction_parameter_names(change.kind);
+             top_sim::friction_parameter_names(kind);
     change.given.emplace_back(p, parameter_of(msg, name));
   }
   if (msg.friction_given.empty())
     for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters)
-      if (p.law == change.kind && parameter_of(msg, p.name) != 0.0) change.given.emplace_back(&p, parameter_of(msg, p.name));
-  if (change.kind != top_sim::kFrictionPointsLaw) return "";
+      if (p.law == kind && parameter_of(msg, p.name) != 0.0) change.given.emplace_back(&p, parameter_of(msg, p.name));
+  change.kind = kind;
+  if (kind != top_sim::kFrictionPointsLaw) return "";
   if (msg.table_s.size() != msg.table_mu.size()) {
     std::ostringstream os;
     os << "table_s has " << msg.table_s.size() << " values and table_mu " << msg.table_mu.size()
@@ -212,25 +216,19 @@ std::string friction_change(const top_sim::TopCommand& msg, top_sim::FrictionCha
 
 }  // namespace
 
-top_sim::Command command_from_message(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
-                                      std::string& error) {
+top_sim::Command command_from_message(const top_sim::TopCommand& msg, std::string& error) {
   top_sim::Command c;
   error.clear();
-  if (msg.set_inclination) c.inclination = msg.inclination;
-  if (msg.set_spin) c.spin = msg.spin;
-  if (msg.set_rotor_spin) c.rotor_spin = msg.rotor_spin;
-  if (msg.set_rotor_coupling) c.rotor_coupling = msg.rotor_coupling;
-  if (msg.set_static_friction) c.static_friction = msg.static_friction;  // validated by the core (>= mu(0))
-  if (msg.set_restitution) c.restitution = msg.restitution;              // validated by the core ([0, 1])
-  if (msg.set_patch_radius) c.patch_radius = msg.patch_radius;           // these four: validated by the core (>= 0)
-  if (msg.set_rolling_resistance) c.rolling_resistance = msg.rolling_resistance;
-  if (msg.set_spin_drag) c.spin_drag = msg.spin_drag;
-  if (msg.set_drag) c.drag = msg.drag;
+  // The schema's fields (command_fields.hpp), named alike in the message; the core validates their values.
+#define TOP_SIM_COPY_SET_FIELD(name) \
+  if (msg.set_##name) c.name = msg.name;
+  TOP_SIM_COMMAND_FIELDS(TOP_SIM_COPY_SET_FIELD)
+#undef TOP_SIM_COPY_SET_FIELD
   if (msg.set_friction) {
     top_sim::FrictionChange change;
     error = friction_change(msg, change);
     if (!error.empty()) return c;
-    c.friction = top_sim::changed_law(in_force, change);
+    c.friction = std::move(change);
   }
   if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_drag all false)";
   return c;

@@ -49,10 +49,9 @@ void to_contact_transform(const top_sim::TopPose& s, const ros::Time& stamp, con
 void to_grid_transform(const top_sim::TopPose& s, double pitch, const ros::Time& stamp, const Frames& frames,
                        geometry_msgs::TransformStamped& plane_grid);
 
-// The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`. A new friction
-// law takes the parameters the message gives (friction_given, else the law's nonzero fields) over `in_force`
-// (top_sim::changed_law: the rule Python's apply and dynamic_reconfigure follow too).
-top_sim::Command command_from_message(const top_sim::TopCommand& msg, const top_sim::FrictionLaw& in_force,
-                                      std::string& error);
+// The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`. A friction
+// change names the law and the parameters the message gives (friction_given, else the law's nonzero fields); the
+// core applies it over the law in force (top_sim::changed_law, the rule of every adapter).
+top_sim::Command command_from_message(const top_sim::TopCommand& msg, std::string& error);
 
 }  // namespace top_sim_ros

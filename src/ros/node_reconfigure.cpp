@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <optional>
+#include <utility>
 
 #include "node_parameters.hpp"
 
@@ -15,6 +16,16 @@ void friction_to_config(const top_sim::FrictionLaw& law, top_sim::TopSimConfig& 
 #define TOP_SIM_COPY_TO_CONFIG(kind, name, range) cfg.name = law.name;
   TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_TO_CONFIG)
 #undef TOP_SIM_COPY_TO_CONFIG
+}
+
+// The law the config shows (it mirrors the law in force but for a table's points, which it cannot carry).
+top_sim::FrictionLaw law_of_config(const top_sim::TopSimConfig& cfg) {
+  top_sim::FrictionLaw law;
+  top_sim::parse_friction_law_kind(cfg.friction_law, law.kind);
+#define TOP_SIM_COPY_FROM_CONFIG(kind, name, range) law.name = cfg.name;
+  TOP_SIM_FRICTION_PARAMETERS(TOP_SIM_COPY_FROM_CONFIG)
+#undef TOP_SIM_COPY_FROM_CONFIG
+  return law;
 }
 
 // The config's fields of law `kind` as a change over the law in force (top_sim::changed_law, the rule of every
@@ -50,17 +61,13 @@ const FiniteField kFiniteFields[] = {
 }  // namespace
 
 NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene,
-                                 const top_sim::Command& start, double real_time_factor, double publish_rate,
-                                 ReconfigureHooks hooks)
+                                 double real_time_factor, double publish_rate, ReconfigureHooks hooks)
     : hooks_(std::move(hooks)) {
   server_ = std::make_unique<dynamic_reconfigure::Server<top_sim::TopSimConfig>>(mutex_, pnh);
-  config_.alpha = start.inclination ? *start.inclination : scene.model.plane.inclination;
-  config_.spin = start.spin ? *start.spin : scene.initial.spin;
   config_.real_time_factor = real_time_factor;
   config_.publish_rate = publish_rate;
-  friction_to_config(start.friction ? *start.friction : scene.model.friction, config_);
-  for (const FiniteField& f : kFiniteFields)
-    config_.*f.config = start.*f.command ? *(start.*f.command) : f.in_model(scene.model);
+  record_scene_for_push(scene);
+  dirty_ = false;  // pushed now
   server_->updateConfig(config_);
   server_->setCallback([this](top_sim::TopSimConfig& cfg, uint32_t level) { on_reconfigure(cfg, level); });
   // updateConfig() sets each parameter on the master (milliseconds): never on a command's path.
@@ -74,7 +81,7 @@ NodeReconfigure::NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, cons
 void NodeReconfigure::record_for_push(const top_sim::Command& c) {
   if (c.inclination) config_.alpha = *c.inclination;
   if (c.spin) config_.spin = *c.spin;
-  if (c.friction) friction_to_config(*c.friction, config_);
+  if (c.friction) friction_to_config(top_sim::changed_law(law_of_config(config_), *c.friction), config_);
   bool finite = false;
   for (const FiniteField& f : kFiniteFields)
     if (c.*f.command) {
@@ -102,12 +109,12 @@ void NodeReconfigure::on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level)
   if ((level & 1) && cfg.alpha != config_.alpha) c.inclination = cfg.alpha;
   if ((level & 2) && cfg.spin != config_.spin) c.spin = cfg.spin;
   if (level & 16) {
-    top_sim::FrictionLaw law = hooks_.friction();
-    if (!reconfigured_friction(cfg, law)) {
+    top_sim::FrictionChange change;
+    if (!reconfigured_friction(cfg, change)) {
       cfg = config_;
       return;
     }
-    c.friction = law;
+    c.friction = std::move(change);
   }
   if (level & 32)
     for (const FiniteField& f : kFiniteFields)
@@ -124,21 +131,21 @@ void NodeReconfigure::on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level)
   for (const FiniteField& f : kFiniteFields) cfg.*f.config = config_.*f.config;
 }
 
-// The law dynamic_reconfigure asks for, over the law in force; false (after a warning) when it names no law or
-// switches to a table, whose points it cannot carry.
-bool NodeReconfigure::reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law) {
+// The change dynamic_reconfigure asks for (the core applies it over the law in force, which config_ shows); false
+// (after a warning) when it names no law or switches to a table, whose points it cannot carry.
+bool NodeReconfigure::reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionChange& change) {
   top_sim::FrictionLawKind kind;
   if (!top_sim::parse_friction_law_kind(cfg.friction_law, kind)) {
     ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = '%s': must be one of %s", cfg.friction_law.c_str(),
              top_sim::friction_law_names(", ").c_str());
     return false;
   }
-  if (kind == top_sim::kFrictionPointsLaw && law.kind != kind) {
+  if (kind == top_sim::kFrictionPointsLaw && config_.friction_law != cfg.friction_law) {
     ROS_WARN("top_sim_node: dynamic_reconfigure friction_law = 'table': the points come only from the scene or a "
-             "TopCommand; kept the %s law", top_sim::to_string(law.kind));
+             "TopCommand; kept the %s law", config_.friction_law.c_str());
     return false;
   }
-  law = top_sim::changed_law(law, friction_from_config(cfg, kind));
+  change = friction_from_config(cfg, kind);
   return true;
 }
 

@@ -18,16 +18,16 @@ namespace top_sim_ros {
 
 struct ReconfigureHooks {
   std::function<std::string(const top_sim::Command&)> submit;  // to the launch-time top: "" or why refused
-  std::function<top_sim::FrictionLaw()> friction;               // the launch-time top's law in force
   std::function<void(double)> set_real_time_factor;             // called with valid values only
   std::function<void(double)> set_publish_rate;
 };
 
 class NodeReconfigure {
  public:
-  // Shows the values in force at start: the scene's, or `start` (dynamic_reconfigure's values found under ~).
-  NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, const top_sim::Command& start,
-                  double real_time_factor, double publish_rate, ReconfigureHooks hooks);
+  // Shows the values in force at start: the launch-time top's scene's (dynamic_reconfigure's values found under ~
+  // are folded into it).
+  NodeReconfigure(ros::NodeHandle& nh, ros::NodeHandle& pnh, const top_sim::Scene& scene, double real_time_factor,
+                  double publish_rate, ReconfigureHooks hooks);
 
   // Records the values an accepted command (from any source) or a reset's scene put in force, and marks them for the
   // slow timer to push to dynamic_reconfigure (never on a command's path).
@@ -36,7 +36,7 @@ class NodeReconfigure {
 
  private:
   void on_reconfigure(top_sim::TopSimConfig& cfg, uint32_t level);
-  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionLaw& law);
+  bool reconfigured_friction(const top_sim::TopSimConfig& cfg, top_sim::FrictionChange& change);
   void reconfigure_pacing(top_sim::TopSimConfig& cfg, uint32_t level);
 
   ReconfigureHooks hooks_;

@@ -2,6 +2,10 @@
 
 #include <utility>
 
+#include <nav_msgs/Path.h>
+
+#include "top_sim/TopState.h"
+
 namespace top_sim_ros {
 
 Frames spawned_frames(const Frames& node_frames, const std::string& name) {
@@ -18,11 +22,37 @@ NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const 
                  double real_time_factor, double rate, double wall)
     : name_(std::move(name)),
       prefix_(launch_top ? "" : name_ + "/"),
-      sim_(std::make_unique<top_sim::Simulator>(scene)),
+      sim_(std::make_unique<top_sim::Simulator>(std::move(scene))),
       pacer_(real_time_factor, rate, wall, sim_->time()),
       frames_(frames),
-      node_time_(node_time),
-      scene_(std::move(scene)) {}
+      node_time_(node_time) {}
+
+namespace {
+// `changes` counts every subscription change of every top: the per-top mirrors are refreshed only then.
+template <class M>
+ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t queue,
+                       const std::shared_ptr<int>& count, const std::shared_ptr<unsigned>& changes) {
+  return pnh.advertise<M>(
+      topic, queue, [count, changes](const ros::SingleSubscriberPublisher&) { ++*count; ++*changes; },
+      [count, changes](const ros::SingleSubscriberPublisher&) { --*count; ++*changes; });
+}
+}  // namespace
+
+// The publishers' callbacks run in spinOnce() on the loop's thread, whichever thread advertised.
+TopTopics NodeTop::open_topics(ros::NodeHandle& pnh, const std::shared_ptr<unsigned>& changes, SubmitCommand submit,
+                               RejectionLog& log) const {
+  TopTopics t;
+  t.state = counted<top_sim::TopState>(pnh, prefix_ + "top_state", 10, output.state_subscribers, changes);
+  t.path = counted<nav_msgs::Path>(pnh, prefix_ + "path", 2, output.path_subscribers, changes);
+  t.input = std::make_unique<TopInput>(pnh, prefix_, name_, std::move(submit), log);
+  return t;
+}
+
+void NodeTop::install(TopTopics topics) {
+  output.state = std::move(topics.state);
+  output.path = std::move(topics.path);
+  input_ = std::move(topics.input);
+}
 
 void NodeTop::advance(double wall, double budget, bool paused, std::chrono::steady_clock::time_point start) {
   const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;

@@ -1,5 +1,5 @@
-// One top of the node: its scene, simulator and pacing, its command input and its output state (docs/ros.md,
-// "Many tops"). Each top integrates on its own (own stepper, events, contact modes, Pacer), so a costly top falls
+// One top of the node: its simulator and pacing, its own topics (built here, as turtlesim's Turtle builds its
+// own), its command input and its output state (docs/ros.md, "Many tops"). Each top integrates on its own (own stepper, events, contact modes, Pacer), so a costly top falls
 // behind alone instead of slowing the others.
 #pragma once
 
@@ -38,6 +38,13 @@ struct TopOutput {
   ros::Time grid_stamp;
 };
 
+// A top's own topics: top_state and path, and the command topics (TopInput). Built on any thread by
+// NodeTop::open_topics, installed on the loop's thread by NodeTop::install.
+struct TopTopics {
+  ros::Publisher state, path;
+  std::unique_ptr<TopInput> input;
+};
+
 class NodeTop {
  public:
   // `node_time`: the node's simulated time at creation (0 for the launch-time top); stamps are
@@ -55,8 +62,14 @@ class NodeTop {
   // Logs a new fault or a change of the behind state once (spawned tops' lines are throttled node-wide).
   void report(double real_time_factor, double publish_rate, bool paused);
 
+  // The one place a top's topics are built, under `pnh` + prefix(): top_state and path (each subscription change
+  // counted in output's counters and in `changes`), and inclination, spin and command, whose commands go to
+  // `submit`. Thread-safe (the node handle and the top's constant parts): the TopicOpener calls it off the loop.
+  TopTopics open_topics(ros::NodeHandle& pnh, const std::shared_ptr<unsigned>& changes, SubmitCommand submit,
+                        RejectionLog& log) const;
+  void install(TopTopics topics);  // on the loop's thread
+
   const std::string& name() const { return name_; }
-  const top_sim::Scene& scene() const { return scene_; }
   top_sim::Simulator& sim() { return *sim_; }
   const top_sim::Simulator& sim() const { return *sim_; }
   top_sim::Pacer& pacer() { return pacer_; }
@@ -69,7 +82,6 @@ class NodeTop {
   std::size_t take_steps();  // integrator steps since the last call
   std::size_t mode_switches() const { return mode_switches_; }
 
-  std::unique_ptr<TopInput> input;
   TopOutput output;
 
  private:
@@ -81,7 +93,7 @@ class NodeTop {
   double node_time_;
   std::size_t steps_reported_ = 0, mode_switches_ = 0;
   bool fault_reported_ = false, behind_reported_ = false;
-  top_sim::Scene scene_;  // read at spawn, reset and reconfigure
+  std::unique_ptr<TopInput> input_;  // its subscribers, once installed
 };
 
 // The frames of a spawned top NAME: NAME/<plane>, NAME/<top>, NAME/<contact> under the node's world frame.

@@ -3,8 +3,11 @@
 #include <optional>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/state.hpp"
+#include "top_sim/stationary.hpp"
 
 namespace top_sim_ros {
 
@@ -68,24 +71,43 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
   if (tree.getType() != XmlRpc::XmlRpcValue::TypeStruct) return c;
   if (tree.hasMember("alpha")) c.inclination = number(tree["alpha"], where + "/alpha");
   if (tree.hasMember("spin")) c.spin = number(tree["spin"], where + "/spin");
-  top_sim::FrictionLaw law = model.friction;
+  top_sim::FrictionChange change;  // over the scene's law, applied by the core
   bool friction = false;
   if (tree.hasMember("friction_law")) {
     XmlRpc::XmlRpcValue& v = tree["friction_law"];
+    top_sim::FrictionLawKind kind;
     if (v.getType() != XmlRpc::XmlRpcValue::TypeString ||
-        !top_sim::parse_friction_law_kind(static_cast<std::string>(v), law.kind))
+        !top_sim::parse_friction_law_kind(static_cast<std::string>(v), kind))
       throw std::runtime_error(where + "/friction_law = " + v.toXml() + ": must be one of " +
                                top_sim::friction_law_names(", "));
+    change.kind = kind;
     friction = true;
   }
+  const top_sim::FrictionLawKind kind = change.kind ? *change.kind : model.friction.kind;
   for (const top_sim::FrictionParameter& p : top_sim::kFrictionParameters) {
     if (!tree.hasMember(p.name)) continue;
-    law.*p.member = number(tree[p.name], where + "/" + p.name);
+    const double v = number(tree[p.name], where + "/" + p.name);  // every law's key is checked
+    if (p.law != kind) continue;  // dynamic_reconfigure stores every law's fields: only this law's are the change
+    change.given.emplace_back(&p, v);
     friction = true;
   }
-  if (friction) c.friction = law;
+  if (friction) c.friction = std::move(change);
   finite_start(tree, model, where, c);
   return c;
+}
+
+top_sim::Scene start_scene(top_sim::Scene scene, const top_sim::Command& start) {
+  top_sim::Command model_part = start;
+  model_part.spin.reset();  // the initial state's, below
+  top_sim::StateVector unused{};
+  unused[top_sim::idx::f + 2] = 1.0;  // the model's fields do not read the state
+  top_sim::apply_command(model_part, scene.model, unused);
+  if (start.spin) scene.initial.spin = *start.spin;
+  if (scene.initial.start == top_sim::StartKind::stationary) {
+    const top_sim::StationaryState st = top_sim::stationary_state(scene.model, scene.initial.spin);
+    if (!st.exists) throw std::runtime_error("initial.start 'stationary' is impossible at the start values: " + st.reason);
+  }
+  return scene;
 }
 
 }  // namespace top_sim_ros

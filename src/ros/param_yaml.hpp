@@ -8,6 +8,7 @@
 
 #include "top_sim/command.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/scene.hpp"
 
 namespace top_sim_ros {
 
@@ -22,5 +23,10 @@ const std::set<std::string>& reconfigure_physics_keys();
 // over `model`'s friction law; throws std::runtime_error naming the parameter when one is not a number or a law.
 // The caller validates the command through the core like any other.
 top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& model, const std::string& where);
+
+// The launch-time top's scene: `scene` with a validated start command folded in (its model fields applied by the core
+// as a command would apply them, its spin as initial.spin), so the top starts there and ~reset returns there without
+// a command. Throws std::runtime_error when a stationary start has no sleeping state at the folded values.
+top_sim::Scene start_scene(top_sim::Scene scene, const top_sim::Command& start);
 
 }  // namespace top_sim_ros

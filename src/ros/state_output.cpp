@@ -31,30 +31,10 @@ StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodePa
   if (!params_.lcm_url.empty()) open_lcm();
 }
 
-namespace {
-
-// `changes` counts every subscription change of every top: the per-top mirrors are refreshed only then.
-template <class M>
-ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t queue,
-                       const std::shared_ptr<int>& count, const std::shared_ptr<unsigned>& changes) {
-  return pnh.advertise<M>(
-      topic, queue, [count, changes](const ros::SingleSubscriberPublisher&) { ++*count; ++*changes; },
-      [count, changes](const ros::SingleSubscriberPublisher&) { --*count; ++*changes; });
-}
-
-}  // namespace
 
 void StateOutput::open(NodeTop& top) {
   top.output.markers.follow_speed(0.0, params_.grid_pitch);  // the grid frame's pitch before the first marker tick
   ++*subscription_changes_;  // the new top's mirrors are refreshed before its first publication
-}
-
-// The callbacks run in spinOnce() on the loop's thread, whichever thread advertised.
-std::pair<ros::Publisher, ros::Publisher> StateOutput::advertise(const NodeTop& top, ros::NodeHandle& pnh) const {
-  const TopOutput& out = top.output;
-  return {counted<top_sim::TopState>(pnh, top.prefix() + "top_state", 10, out.state_subscribers,
-                                     subscription_changes_),
-          counted<nav_msgs::Path>(pnh, top.prefix() + "path", 2, out.path_subscribers, subscription_changes_)};
 }
 
 void StateOutput::refresh_readers(TopSet& tops) {

@@ -34,7 +34,8 @@ class StateOutput {
   // A new top: its marker state, and its counters refreshed before its first publication (loop's thread).
   void open(NodeTop& top);
   // Advertises the top's top_state and path (any thread: reads only the top's name and its counters' pointers).
-  std::pair<ros::Publisher, ros::Publisher> advertise(const NodeTop& top, ros::NodeHandle& pnh) const;
+  // Shared with a top's publishers' callbacks (NodeTop::open_topics): counts every subscription change.
+  const std::shared_ptr<unsigned>& subscription_changes() const { return subscription_changes_; }
   void close(NodeTop& top);                       // deletes its markers in rviz
   void clear_trail(NodeTop& top) { top.output.trail.clear(); }
   const std::string& followed() const { return follow_; }

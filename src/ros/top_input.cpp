@@ -26,9 +26,8 @@ void RejectionLog::flush(double wall) {
 }
 
 TopInput::TopInput(ros::NodeHandle& nh, const std::string& prefix, const std::string& top_name, SubmitCommand submit,
-                   FrictionInForce friction, RejectionLog& log)
-    : label_(prefix.empty() ? "" : "top " + top_name + ": "), submit_(std::move(submit)),
-      friction_(std::move(friction)), log_(log) {
+                   RejectionLog& log)
+    : label_(prefix.empty() ? "" : "top " + top_name + ": "), submit_(std::move(submit)), log_(log) {
   // No Nagle delay on commands: their latency is part of the contract (two publish periods).
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   inclination_ = nh.subscribe(prefix + "inclination", kQueue, &TopInput::on_inclination, this, hints);
@@ -55,7 +54,7 @@ void TopInput::on_spin(const std_msgs::Float64::ConstPtr& m) {
 
 void TopInput::on_command(const top_sim::TopCommand::ConstPtr& m) {
   std::string error;
-  const top_sim::Command c = command_from_message(*m, friction_(), error);
+  const top_sim::Command c = command_from_message(*m, error);
   if (!error.empty()) {
     log_.warn(label_ + "command rejected: " + error, ros::WallTime::now().toSec());
     return;

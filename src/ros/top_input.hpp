@@ -32,13 +32,12 @@ class RejectionLog {
 
 // Submits a command to a top; returns "" or the core's reason for refusing it.
 using SubmitCommand = std::function<std::string(const top_sim::Command&)>;
-using FrictionInForce = std::function<top_sim::FrictionLaw()>;
 
 // The three command topics of one top under `nh` + `prefix` ("" for the launch-time top, "NAME/" for a spawned one).
 class TopInput {
  public:
   TopInput(ros::NodeHandle& nh, const std::string& prefix, const std::string& top_name, SubmitCommand submit,
-           FrictionInForce friction, RejectionLog& log);
+           RejectionLog& log);
 
  private:
   void submit(const top_sim::Command& c, const char* source);
@@ -49,7 +48,6 @@ class TopInput {
   static constexpr uint32_t kQueue = 100;  // a 1 kHz stream is 5 per 200 Hz tick; 10 dropped 0.24 % of a flood
   std::string label_;                      // "" or "top NAME: " in warnings
   SubmitCommand submit_;
-  FrictionInForce friction_;
   RejectionLog& log_;
   ros::Subscriber inclination_, spin_, command_;
 };

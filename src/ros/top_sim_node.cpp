@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <memory>
 #include <sstream>
-#include <tuple>
 
 #include <diagnostic_updater/diagnostic_updater.h>
 #include <std_srvs/SetBool.h>
@@ -54,14 +53,9 @@ class TopSimNode {
     opener_ = std::make_unique<top_sim_ros::TopicOpener>([this](NodeTop& t) { return open_topics(t); });
     const double wall = ros::WallTime::now().toSec();
     start_wall_ = wall;
-    NodeTop& top = tops_.add(std::make_unique<NodeTop>(kLaunchTopName, true, scene_, params_.frames, 0.0,
+    NodeTop& top = tops_.add(std::make_unique<NodeTop>(kLaunchTopName, true, launch_scene_, params_.frames, 0.0,
                                                        params_.real_time_factor, params_.publish_rate, wall));
     connect(top, false);
-    if (!start_command_.empty()) {
-      top.sim().submit(start_command_);  // validated in read_start()
-      ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s applied at t = 0 (and again by ~reset)",
-               pnh_.getNamespace().c_str());
-    }
     for (auto& [name, scene] : start_tops) {
       // Beyond `topics_at_start` tops, a top's own topics follow on the background thread (docs/ros.md).
       const bool background = params_.topics_at_start >= 0 &&
@@ -78,9 +72,9 @@ class TopSimNode {
     updater_.add("simulation", [this](diagnostic_updater::DiagnosticStatusWrapper& st) { diagnose(st); });
     start_reconfigure();
     ROS_INFO("top_sim_node: %s, alpha %.4g rad, spin %.4g rad/s, %s, %zu tops, publishing at %.4g Hz, real-time "
-             "factor %.4g", scene_.source.c_str(), scene_.model.plane.inclination, scene_.initial.spin,
-             top_sim::to_string(scene_.integrator.method), tops_.size(), params_.publish_rate,
-             params_.real_time_factor);
+             "factor %.4g", launch_scene_.source.c_str(), launch_scene_.model.plane.inclination,
+             launch_scene_.initial.spin, top_sim::to_string(launch_scene_.integrator.method), tops_.size(),
+             params_.publish_rate, params_.real_time_factor);
     topics_pending_ = opener_->pending();
     if (topics_pending_ > 0)
       ROS_INFO("top_sim_node: the own topics of %zu of the %zu tops are being advertised in the background "
@@ -111,6 +105,7 @@ class TopSimNode {
   // ---- start-up -------------------------------------------------------------------------------------------------
   bool read_start(std::vector<std::pair<std::string, top_sim::Scene>>& start_tops) {
     const std::string ns = pnh_.getNamespace();
+    top_sim::Command start;  // dynamic_reconfigure's values found at start, folded into launch_scene_
     try {
       XmlRpc::XmlRpcValue tree;
       ros::param::get(ns, tree);
@@ -123,7 +118,7 @@ class TopSimNode {
       scene_ = top_sim_ros::read_node_scene(params, params_.config_dir);
       start_tops = top_sim_ros::read_start_tops(params, params_.config_dir, scene_);
       for (const std::string& key : top_sim_ros::reconfigure_physics_keys()) params.know(key);
-      start_command_ = top_sim_ros::start_command(params.tree(), scene_.model, ns);
+      start = top_sim_ros::start_command(params.tree(), scene_.model, ns);
       params.check_unknown();
     } catch (const top_sim::SceneError& e) {
       ROS_FATAL("top_sim_node: bad scene: %s", e.what());
@@ -132,11 +127,20 @@ class TopSimNode {
       ROS_FATAL("top_sim_node: bad parameter: %s", e.what());
       return false;
     }
-    const std::string error = top_sim::validate(start_command_, scene_.model);
+    const std::string error = top_sim::validate(start, scene_.model);
     if (!error.empty()) {
       ROS_FATAL("top_sim_node: bad dynamic_reconfigure parameter under %s at start: %s", ns.c_str(), error.c_str());
       return false;
     }
+    try {
+      launch_scene_ = top_sim_ros::start_scene(scene_, start);
+    } catch (const std::exception& e) {
+      ROS_FATAL("top_sim_node: bad dynamic_reconfigure parameter under %s at start: %s", ns.c_str(), e.what());
+      return false;
+    }
+    if (!start.empty())
+      ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s are the launch-time top's start (and "
+               "~reset's)", ns.c_str());
     return true;
   }
 
@@ -147,28 +151,22 @@ class TopSimNode {
       opener_->add(top);
       return;
     }
-    top_sim_ros::TopTopics t = open_topics(top);
-    top.output.state = std::move(t.state);
-    top.output.path = std::move(t.path);
-    top.input = std::move(t.input);
+    top.install(open_topics(top));
   }
 
-  // The roscpp calls for one top's own topics (thread-safe: the node handle and the top's constant parts); the
-  // launch-time top's accepted commands are shown in dynamic_reconfigure.
+  // A top's own topics (NodeTop builds them; thread-safe); the launch-time top's accepted commands are shown in
+  // dynamic_reconfigure.
   top_sim_ros::TopTopics open_topics(NodeTop& top) {
-    top_sim_ros::TopTopics t;
-    std::tie(t.state, t.path) = output_->advertise(top, pnh_);
     top_sim::Simulator& sim = top.sim();
     const bool shown = top.launch_top();
-    t.input = std::make_unique<top_sim_ros::TopInput>(
-        pnh_, top.prefix(), top.name(),
+    return top.open_topics(
+        pnh_, output_->subscription_changes(),
         [this, &sim, shown](const top_sim::Command& c) {  // runs in spinOnce() on the loop's thread
           const std::string error = sim.submit(c);
           if (error.empty() && shown && reconfigure_) reconfigure_->record_for_push(c);
           return error;
         },
-        [&sim] { return sim.model().friction; }, rejections_);
-    return t;
+        rejections_);
   }
 
   void advertise_services() {
@@ -189,7 +187,6 @@ class TopSimNode {
         rejections_.warn("dynamic_reconfigure rejected: " + error, ros::WallTime::now().toSec());
       return error;
     };
-    hooks.friction = [this] { return tops_.launch_top().sim().model().friction; };
     hooks.set_real_time_factor = [this](double f) {
       params_.real_time_factor = f;
       const double wall = ros::WallTime::now().toSec();
@@ -199,7 +196,7 @@ class TopSimNode {
       params_.publish_rate = rate;  // run() reads it every period
       for (auto& t : tops_) t->pacer().set_rate(rate);  // the physics budget is a fraction of the period
     };
-    reconfigure_ = std::make_unique<top_sim_ros::NodeReconfigure>(nh_, pnh_, scene_, start_command_,
+    reconfigure_ = std::make_unique<top_sim_ros::NodeReconfigure>(nh_, pnh_, launch_scene_,
                                                                   params_.real_time_factor, params_.publish_rate,
                                                                   std::move(hooks));
   }
@@ -307,12 +304,8 @@ class TopSimNode {
     const double t = tops_.launch_top().sim().time();
     const double wall = ros::WallTime::now().toSec();
     for (auto& top : tops_) top->reset(wall);
-    reconfigure_->record_scene_for_push(scene_);
-    // The launch-time top returns to the start the user chose (alpha:=, spin:=), as it started, not to the file's.
-    if (!start_command_.empty()) {
-      tops_.launch_top().sim().submit(start_command_);
-      reconfigure_->record_for_push(start_command_);
-    }
+    // The launch-time top returns to the start the user chose (alpha:=, spin:=): its scene holds them.
+    reconfigure_->record_scene_for_push(launch_scene_);
     res.success = true;
     std::ostringstream os;
     if (tops_.size() == 1)
@@ -338,8 +331,8 @@ class TopSimNode {
 
   ros::NodeHandle nh_, pnh_;
   top_sim_ros::NodeParameters params_;
-  top_sim::Scene scene_;
-  top_sim::Command start_command_;  // dynamic_reconfigure's values found at start
+  top_sim::Scene scene_;  // as read: the base of spawned tops and of ~tops
+  top_sim::Scene launch_scene_;  // scene_ with dynamic_reconfigure's values found at start (alpha:=, spin:=, ...)
   top_sim_ros::TopSet tops_;
   top_sim_ros::RejectionLog rejections_;
   std::unique_ptr<top_sim_ros::StateOutput> output_;

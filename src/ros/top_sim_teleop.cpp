@@ -17,6 +17,7 @@
 #include <std_srvs/Trigger.h>
 
 #include "top_sim/TopState.h"
+#include "top_sim/limits.hpp"
 
 namespace {
 
@@ -106,7 +107,7 @@ struct Settings {
   std::string sim_node = "top_sim";
   double alpha_step = 0.01;  // [rad] per key press
   double spin_step = 10.0;   // [rad/s] per key press
-  double max_alpha = 1.5;    // just inside the node's |alpha| < pi/2 bound; the node validates again
+  double max_alpha = 1.5;    // just inside the node's |alpha| < kMaxInclination bound; the node validates again
   double max_spin = 2000.0;  // [rad/s]
 };
 
@@ -117,7 +118,7 @@ bool read_settings(ros::NodeHandle& pnh, Settings& s) {
   s.spin_step = pnh.param("spin_step", s.spin_step);
   s.max_alpha = pnh.param("max_inclination", s.max_alpha);
   s.max_spin = pnh.param("max_spin", s.max_spin);
-  if (!(s.alpha_step > 0.0) || !(s.spin_step > 0.0) || !(s.max_alpha > 0.0 && s.max_alpha < M_PI / 2) ||
+  if (!(s.alpha_step > 0.0) || !(s.spin_step > 0.0) || !(s.max_alpha > 0.0 && top_sim::admissible_inclination(s.max_alpha)) ||
       !(s.max_spin > 0.0)) {
     ROS_FATAL("top_sim_teleop: alpha_step = %g (> 0 rad), spin_step = %g (> 0 rad/s), max_inclination = %g "
               "(0 < x < pi/2 rad), max_spin = %g (> 0 rad/s): a value is out of range",

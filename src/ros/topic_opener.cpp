@@ -49,9 +49,7 @@ std::size_t TopicOpener::install() {
     ready.swap(done_);
   }
   for (auto& [top, topics] : ready) {
-    top->output.state = std::move(topics.state);
-    top->output.path = std::move(topics.path);
-    top->input = std::move(topics.input);
+    top->install(std::move(topics));
   }
   return ready.size();
 }

@@ -21,12 +21,6 @@
 
 namespace top_sim_ros {
 
-// What the roscpp calls of one top produce; built on any thread, installed into the top on the loop's thread.
-struct TopTopics {
-  ros::Publisher state, path;
-  std::unique_ptr<TopInput> input;
-};
-
 class TopicOpener {
  public:
   using Build = std::function<TopTopics(NodeTop&)>;  // thread-safe: only reads the top's constant parts

@@ -104,7 +104,7 @@ QWidget* ControlWidget::build_top() {
 QWidget* ControlWidget::build_change() {
   auto* box = new QGroupBox("Change the picked top", this);
   auto* form = form_of(box);
-  inclination_ = followed_field(inclination_follow_, "alpha, |alpha| < pi/2", box);
+  inclination_ = followed_field(inclination_follow_, ("alpha, " + field_range("inclination")).c_str(), box);
   spin_ = followed_field(spin_follow_, "shell spin", box);
   form->addRow("inclination [rad]", inclination_);
   form->addRow("spin [rad/s]", spin_);
@@ -161,10 +161,12 @@ QWidget* ControlWidget::build_contact_fields(QWidget* parent) {
     }
     auto* field = new QLineEdit(grid);
     field->setPlaceholderText("in force");
-    field->setToolTip(QString::fromStdString(std::string(f.name) + " " + f.symbol + " [" + f.unit + "], >= 0"));
+    const std::string unit = field_unit(f.name);
+    field->setToolTip(QString::fromStdString(std::string(f.name) + " " + f.symbol + " [" + unit + "], " +
+                                             field_range(f.name)));
     field->setMinimumWidth(50);
     contact_[f.name] = field;
-    row->addWidget(new QLabel(QString::fromStdString(std::string(f.symbol) + " [" + f.unit + "]"), grid));
+    row->addWidget(new QLabel(QString::fromStdString(std::string(f.symbol) + " [" + unit + "]"), grid));
     row->addWidget(field, 1);
     connect(field, &QLineEdit::returnPressed, this, &ControlWidget::apply);
   }

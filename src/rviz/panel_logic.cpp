@@ -9,6 +9,7 @@
 #include "conversions.hpp"
 #include "markers.hpp"
 #include "top_sim/command.hpp"
+#include "top_sim/command_fields.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/model.hpp"
@@ -208,10 +209,13 @@ std::string sent_message(const top_sim::TopCommand& c, const std::string& top) {
   for (const ContactField& field : kContactFields) {
     const ContactMembers m = contact_members(field.name);
     if (c.*m.set)
-      parts.push_back(std::string(field.name) + " " + top_sim::format_number(c.*m.value) + " " + field.unit);
+      parts.push_back(std::string(field.name) + " " + top_sim::format_number(c.*m.value) + " " + field_unit(field.name));
   }
   return "Sent to top '" + top + "': " + listed(parts) + ".";
 }
+
+std::string field_unit(const std::string& name) { return top_sim::find_command_field(name)->unit; }
+std::string field_range(const std::string& name) { return top_sim::find_command_field(name)->range_text; }
 
 std::string refused_message(const std::string& error) { return sentence("Nothing was sent: " + error); }
 

@@ -27,16 +27,19 @@ struct PanelFields {
   std::map<std::string, std::string> contact;   // kContactFields' name -> text; an empty text is not sent
 };
 
-// The finite contact's and air's fields (TopCommand's names, physics.md section 12), each >= 0.
+// The finite contact's and air's fields (TopCommand's names, physics.md section 12); their units and ranges are
+// the command schema's (field_unit, field_range).
 struct ContactField {
   const char* name;
-  const char* unit;
   const char* symbol;  // physics.md's: short enough for two fields side by side in the dock
 };
-constexpr ContactField kContactFields[] = {{"patch_radius", "m", "a"},
-                                           {"rolling_resistance", "m", "delta"},
-                                           {"spin_drag", "N m s", "k"},
-                                           {"drag", "N s/m", "c"}};
+constexpr ContactField kContactFields[] = {
+    {"patch_radius", "a"}, {"rolling_resistance", "delta"}, {"spin_drag", "k"}, {"drag", "c"}};
+
+// A command field's unit and allowed range as the command schema gives them (top_sim::command_fields), for the
+// panel's labels and tool tips.
+std::string field_unit(const std::string& name);
+std::string field_range(const std::string& name);
 
 // The fields as one TopCommand, checked with the core's rules (top_sim::validate of a Command and of a friction
 // law); "" or an error naming the field, the text and the allowed range. Law parameters left empty are not given:

@@ -391,9 +391,9 @@ TEST(ContactCommands, StaticFrictionAndRestitutionAreValidatedAndApplied) {
   bad.restitution = 1.5;
   EXPECT_NE(sim.submit(bad).find("restitution = 1.5: must be in [0, 1]"), std::string::npos) << sim.submit(bad);
   Command coulomb;
-  coulomb.friction = FrictionLaw{};
+  coulomb.friction = FrictionChange{};
   coulomb.friction->kind = FrictionLawKind::coulomb;
-  coulomb.friction->mu = 0.3;
+  coulomb.friction->given.emplace_back(find_friction_parameter("mu"), 0.3);
   coulomb.static_friction = 0.2;
   EXPECT_NE(sim.submit(coulomb).find(">= mu(0) = 0.3"), std::string::npos) << sim.submit(coulomb);
   coulomb.static_friction = 0.35;

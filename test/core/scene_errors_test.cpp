@@ -136,7 +136,7 @@ TEST(SceneErrors, EventsOutOfOrder) {
   expect_error(kTop + "events:\n  - {t: 5.0, inclination: 0.15}\n  - {t: 3.0, spin: 100.0}\n", "events[1].t", "3",
                ">= the previous event's t = 5");
   expect_error(kTop + "events:\n  - {t: -1.0, spin: 100.0}\n", "events[0].t", "-1", ">= 0");
-  expect_error(kTop + "events:\n  - {t: 1.0, inclination: 3.0}\n", "events[0].inclination", "3", "(-pi/2, pi/2)");
+  expect_error(kTop + "events:\n  - {t: 1.0, inclination: 3.0}\n", "events[0].inclination", "3", "|alpha| < pi/2");
 }
 
 TEST(SceneErrors, AdiabaticModelAboveAlphaC) {

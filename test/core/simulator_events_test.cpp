@@ -83,9 +83,9 @@ TEST(SimulatorEvents, InvalidCommandsAreRejectedWithFieldValueAndRangeAndLeaveTh
   cases[2].c.spin = std::numeric_limits<double>::infinity(); cases[2].field = "spin";
   cases[3].c.rotor_spin = 100.0; cases[3].field = "rotor_spin";          // this top has no rotor
   cases[4].c.rotor_coupling = -1.0; cases[4].field = "rotor_coupling";
-  FrictionLaw propelling;
+  FrictionChange propelling;
   propelling.kind = FrictionLawKind::coulomb;
-  propelling.mu = -0.1;
+  propelling.given.emplace_back(find_friction_parameter("mu"), -0.1);
   cases[5].c.friction = propelling; cases[5].field = "friction.mu";
   for (const auto& k : cases) {
     const std::string error = sim.submit(k.c);
@@ -172,9 +172,9 @@ TEST(SimulatorEvents, CommandsSubmittedFromAnotherThreadWhileAdvancingAreAllAppl
       Command c;
       c.inclination = 0.1 + 1e-4 * i;
       if (i % 2 == 0) {
-        FrictionLaw law = sim.scene().model.friction;  // scene(): immutable, safe from any thread
-        law.mu_c = 0.25 + 1e-4 * i;
-        c.friction = law;
+        FrictionChange change;  // over the law in force: the core applies it at the step boundary
+        change.given.emplace_back(find_friction_parameter("mu_c"), 0.25 + 1e-4 * i);
+        c.friction = change;
       }
       if (sim.submit(c).empty()) ++accepted;
       std::this_thread::yield();

@@ -246,7 +246,12 @@ bool read_command(Bytes& in, Command& c) {
   if (set & 0x10) {
     FrictionLaw law;
     if (!read_friction(in, law)) return false;
-    c.friction = law;
+    FrictionChange change;  // the law's own parameters, as a TopCommand gives them
+    change.kind = law.kind;
+    for (const FrictionParameter& p : kFrictionParameters)
+      if (p.law == law.kind) change.given.emplace_back(&p, law.*p.member);
+    if (law.kind == kFrictionPointsLaw) change.points = law.points;
+    c.friction = change;
   }
   if (set & 0x20) c.static_friction = in.number();
   if (set & 0x40) c.restitution = in.number();
@@ -257,7 +262,7 @@ bool read_command(Bytes& in, Command& c) {
 std::string check_applied(const Command& c, const Model& m) {
   auto same = [](double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; };
   if (c.inclination && !same(m.plane.inclination, *c.inclination)) return "inclination not applied";
-  if (c.friction && m.friction.kind != c.friction->kind) return "friction law not applied";
+  if (c.friction && c.friction->kind && m.friction.kind != *c.friction->kind) return "friction law not applied";
   if (c.static_friction && !(m.contact.static_friction && same(*m.contact.static_friction, *c.static_friction)))
     return "static_friction not applied";
   if (c.restitution && !same(m.contact.restitution, *c.restitution)) return "restitution not applied";

@@ -21,11 +21,14 @@
 
 #include "cpu_affinity.hpp"
 #include "node_parameters.hpp"
+#include "param_yaml.hpp"
 #include "top_set.hpp"
 #include "topic_opener.hpp"
 #include "marker_stream.hpp"
 #include "trail.hpp"
 #include "top_sim/scene.hpp"
+#include "top_sim/simulator.hpp"
+#include "top_sim/state.hpp"
 
 namespace {
 
@@ -589,4 +592,43 @@ TEST(NodeParameters, TopicsAtStartIsACountOrMinusOne) {
   EXPECT_EQ(read(20000), 20000);
   const std::string m = message_of([&] { read(-2); });
   EXPECT_NE(m.find("/top_sim/topics_at_start = -2"), std::string::npos) << m;
+}
+
+// The launch arguments (alpha:=, spin:=, dynamic_reconfigure keys at start) are part of the launch-time top's scene:
+// it starts there and a reset returns there with no command; a friction change keeps what it does not name.
+TEST(StartScene, LaunchValuesAreFoldedIntoTheScene) {
+  const top_sim::Scene scene = default_scene();
+  top_sim::Command start;
+  start.inclination = 0.2;
+  start.spin = 150.0;
+  start.friction = top_sim::FrictionChange{};
+  start.friction->given.emplace_back(top_sim::find_friction_parameter("mu_c"), 0.3);
+  ASSERT_EQ(top_sim::validate(start, scene.model), "");
+  const top_sim::Scene launch = top_sim_ros::start_scene(scene, start);
+  EXPECT_EQ(launch.model.plane.inclination, 0.2);
+  EXPECT_EQ(launch.initial.spin, 150.0);
+  EXPECT_EQ(launch.model.friction.mu_c, 0.3);
+  EXPECT_EQ(launch.model.friction.s_c, scene.model.friction.s_c) << "not named: the scene's";
+  EXPECT_EQ(launch.initial.tilt, scene.initial.tilt);
+  top_sim::Simulator sim(launch);
+  EXPECT_NEAR(top_sim::shell_spin(sim.state()), 150.0, 1e-12);
+  top_sim::Command tilt;
+  tilt.inclination = 0.05;
+  ASSERT_EQ(sim.submit(tilt), "");
+  sim.advance_to(0.01);
+  ASSERT_EQ(sim.model().plane.inclination, 0.05);
+  sim.reset();
+  EXPECT_EQ(sim.model().plane.inclination, 0.2);
+  EXPECT_NEAR(top_sim::shell_spin(sim.state()), 150.0, 1e-12);
+  EXPECT_EQ(top_sim_ros::start_scene(scene, top_sim::Command{}).model.plane.inclination,
+            scene.model.plane.inclination) << "no start values: the scene as read";
+}
+
+// A stationary start is computed at the folded values; where it has no sleeping state the start is refused.
+TEST(StartScene, StationaryStartWithoutASleepingStateIsRefused) {
+  const top_sim::Scene gyro = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/gyro_reversal.yaml");
+  ASSERT_EQ(gyro.initial.start, top_sim::StartKind::stationary);
+  top_sim::Command steep;
+  steep.inclination = 1.2;  // tan(1.2) = 2.6: far above any mu of pmma, no sleeping state
+  EXPECT_THROW(top_sim_ros::start_scene(gyro, steep), std::runtime_error);
 }
