@@ -111,7 +111,7 @@ bool SimulatorImpl::scan_step(double t_end) {
   if (model_.kind != ModelKind::full) return scan_reduced(t_end, y1);
   const LocatedEvent e = locate_event(t_end, y1);
   run_cadence(e.kind == Event::none ? t_end : e.t);  // the regime's points up to the event, on this dense output
-  if (fault_ != ContactFault::none || take_handover()) return false;
+  if (fault_ != ContactFault::none || (handover_due_ && take_handover())) return false;
   if (e.kind == Event::none) return true;
   StateVector y;
   stepper_->state_at(e.t, y);

@@ -110,10 +110,10 @@ SimulatorImpl::Reach SimulatorImpl::step_to(double t_stop, StepBudget& b) {
 
 // The state at t_stop: the step's end, the scan's interpolation at it, or the dense output there.
 void SimulatorImpl::commit_stop(double t_stop) {
+  if (stepper_->time() <= t_stop) return commit(stepper_->state(), t_stop);
+  if (scan_end_.valid && scan_end_.t == t_stop) return commit(scan_end_.y, t_stop);
   StateVector y;
-  if (stepper_->time() <= t_stop) y = stepper_->state();
-  else if (scan_end_.valid && scan_end_.t == t_stop) y = scan_end_.y;
-  else stepper_->state_at(t_stop, y);
+  stepper_->state_at(t_stop, y);
   commit(y, t_stop);
 }
 
