@@ -26,15 +26,19 @@ struct PointContactDynamics {
   double psi_dot = 0.0;
 };
 
-// Everything one evaluation derives from the state: the motion, the mode's margins and the finite contact's terms.
-struct Dynamics : PointContactDynamics {
-  ModeMargins margins;             // filled by evaluate_dynamics only
-  // Finite contact (physics.md section 12); all 0 for a point contact.
+// The finite contact's terms (physics.md section 12); all 0 for a point contact.
+struct ContactDynamics : PointContactDynamics {
   double patch_radius = 0.0;       // a [m]
   double drilling_torque = 0.0;    // n . M_n [N m]
   Eigen::Vector3d couple = Eigen::Vector3d::Zero();  // M_n n + M_r: the contact's torque besides rho x F [N m]
   Eigen::Vector3d air_force = Eigen::Vector3d::Zero();   // -c v_cm [N]
   Eigen::Vector3d air_torque = Eigen::Vector3d::Zero();  // -k omega [N m]
+};
+
+// Everything one evaluation derives from the state: the motion, the finite contact's terms and the mode's margins
+// (a right-hand side fills a ContactDynamics: it needs no margins).
+struct Dynamics : ContactDynamics {
+  ModeMargins margins;             // filled by evaluate_dynamics only
 };
 
 // The force (and, on a patch, the drilling torque) that keeps a contact stuck: v_c constant and, on a patch,
@@ -81,11 +85,14 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
 void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                       ContactForceRecord* record = nullptr);
 
-// The contact's model, point_contact(model) decided once: a caller that integrates many steps of one model (the
-// Simulator, at each restart) passes it, and the point contact's right-hand side then runs without the test.
-enum class ContactModel : unsigned char { point, finite };
+// The contact's model, decided once: a caller that integrates many steps of one model (the Simulator, at each
+// restart) passes it, and the right-hand side then runs only the code that model needs. `patch`: a patch (fixed or
+// Hertz) alone; `finite`: any section-12 term, rolling resistance and air included.
+enum class ContactModel : unsigned char { point, patch, finite };
 inline ContactModel contact_model(const Model& model) {
-  return point_contact(model) ? ContactModel::point : ContactModel::finite;
+  if (point_contact(model)) return ContactModel::point;
+  const bool patch_alone = model.finite_contact.rolling_resistance == 0.0 && !model.air.active();
+  return patch_alone ? ContactModel::patch : ContactModel::finite;
 }
 void model_derivative(const Model& model, ContactModel contact, ContactMode mode, const StateVector& y,
                       StateVector& dydt, ContactForceRecord* record = nullptr);

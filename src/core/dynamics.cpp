@@ -18,9 +18,7 @@ namespace {
 
 // Section 4: N (1/m - f A) = -n.g + f (C - B) with A = (I'^-1 T x f_hat) . n, T the contact's torque per newton
 // (rho x d on a point); equal to n.b / (n.K d) of section 9. Sets the Painleve margin m (1/m - f A).
-[[gnu::always_inline]] inline double constrained_normal_force(const detail::RigidBody& b, const Eigen::Vector3d& Ii_T,
-                                                              double& painleve) {
-  const double A = Ii_T.cross(b.f_hat).z();
+[[gnu::always_inline]] inline double constrained_normal_force(const detail::RigidBody& b, double A, double& painleve) {
   const double B = b.Ii_G.cross(b.f_hat).z();
   const double denominator = 1.0 / b.m - b.f * A;
   painleve = b.m * denominator;
@@ -37,7 +35,7 @@ void slipping_force(const Model& model, const detail::RigidBody& b, PointContact
   const Eigen::Vector3d Ii_rxd = b.inverse_inertia(b.rho.cross(d));
   double N;
   if (model.normal_force == NormalForceModel::constrained) {
-    N = constrained_normal_force(b, Ii_rxd, painleve);
+    N = constrained_normal_force(b, Ii_rxd.cross(b.f_hat).z(), painleve);
   } else {
     N = -b.m * b.g.z();  // static approximation: N = m g cos(alpha)
     painleve = ModeMargins::kNone;
@@ -61,7 +59,7 @@ void rolling_contact_force(const detail::RigidBody& b, PointContactDynamics& out
 
 // Air acts on the body, not at the contact: its force joins gravity and its torque the torque-free part G, so
 // every mode's constraint solve sees it unchanged.
-void add_air(const Model& model, detail::RigidBody& b, Dynamics& out) {
+void add_air(const Model& model, detail::RigidBody& b, ContactDynamics& out) {
   const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
   out.air_force = -model.air.drag * v_cm;
   out.air_torque = -model.air.spin_drag * b.w;
@@ -101,39 +99,39 @@ struct PatchLaw {
 }
 
 // Slipping on a finite contact: F = N d, couple = N (M_n n + tau_r) with the coupled law of section 12; N keeps
-// n . a_m = 0 as in slipping_force, with rho x d + M_n n + tau_r in place of rho x d (M_n n adds nothing to A:
-// (I'^-1 n x f_hat) . n = 0 for the axisymmetric inertia). A Hertz patch depends on N: a first pass takes a from N = m g
-// cos(alpha) and gives N, the second takes a from that N.
-void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynamics& out, double& painleve) {
+// n . a_m = 0 as in slipping_force, with rho x d + M_n n + tau_r in place of rho x d. A Hertz patch depends on N: a
+// first pass takes a from N = m g cos(alpha) and gives N, the second takes a from that N. kExtras: rolling
+// resistance and air may be on (ContactModel::finite); a patch alone compiles without them.
+template <bool kExtras>
+void slipping_force_finite(const Model& model, const detail::RigidBody& b, ContactDynamics& out, double& painleve) {
   const FiniteContact& fc = model.finite_contact;
   const Eigen::Vector3d& v_t = out.contact.v_t;
   const double vt = v_t.norm(), omega_n = b.w.z();
   const double speed_sum = std::sqrt(b.u.x() * b.u.x() + b.u.y() * b.u.y()) + out.contact.rolling_speed +
                            model.regularization_speed;
   const bool constrained = model.normal_force == NormalForceModel::constrained;
-  const bool resisting = fc.rolling_resistance != 0.0;
+  const bool resisting = kExtras && fc.rolling_resistance != 0.0;
   const Eigen::Vector3d tau_r = resisting ? rolling_resistance_per_newton(model, b) : Eigen::Vector3d::Zero();
-  // The torque per newton's image under I'^-1 at a law; its drilling part adds nothing to A (exactly), so the first
-  // pass leaves it out.
-  auto torque_image = [&](const PatchLaw& law, bool drilling) {
-    Eigen::Vector3d T = b.rho.cross(Eigen::Vector3d(-law.force_per_speed * v_t.x(), -law.force_per_speed * v_t.y(), 1.0));
-    if (drilling) T.z() += law.drilling;
-    if (resisting) T += tau_r;
-    return b.inverse_inertia(T);
-  };
+  // A of constrained_normal_force is affine in q = F_t / (N |v_t|): the inertia's f_hat part drops out of the
+  // cross product with f_hat, (rho x d) x f_hat = d (rho . f_hat) - rho (d . f_hat) for d = (-q v_t, 1), and
+  // M_n n adds nothing; so a pass costs no torque image.
+  const double A0 = b.inv_d * (b.rho.dot(b.f_hat) - b.rho.z() * b.f_hat.z() + (resisting ? tau_r.cross(b.f_hat).z() : 0.0));
+  const double A1 = b.inv_d * b.rho.z() * (v_t.x() * b.f_hat.x() + v_t.y() * b.f_hat.y());
   double N = -b.m * b.g.z(), a = fc.patch_radius;
   if (fc.hertz) {
     a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     if (constrained) {
       const PatchLaw first = patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n, speed_sum);
-      N = constrained_normal_force(b, torque_image(first, false), painleve);
+      N = constrained_normal_force(b, A0 + first.force_per_speed * A1, painleve);
       a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     }
   }
   const PatchLaw law = patch_law(model, drilling_lever(fc.pressure, a), vt, omega_n, speed_sum);
-  const Eigen::Vector3d Ii_T = torque_image(law, true);
+  Eigen::Vector3d T = b.rho.cross(Eigen::Vector3d(-law.force_per_speed * v_t.x(), -law.force_per_speed * v_t.y(), 1.0));
+  T.z() += law.drilling;
+  if (resisting) T += tau_r;
   if (constrained)
-    N = constrained_normal_force(b, Ii_T, painleve);
+    N = constrained_normal_force(b, A0 + law.force_per_speed * A1, painleve);
   else
     painleve = ModeMargins::kNone;
   out.mu = law.mu;
@@ -144,7 +142,7 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Dynam
   out.contact_force = Eigen::Vector3d(-N * law.force_per_speed * v_t.x(), -N * law.force_per_speed * v_t.y(), N);
   out.drilling_torque = N * law.drilling;
   out.couple.z() = out.drilling_torque;
-  out.omega_dot = N * Ii_T - b.Ii_G;
+  out.omega_dot = N * b.inverse_inertia(T) - b.Ii_G;
   out.dissipation = N * law.force_per_speed * v_t.squaredNorm() - out.drilling_torque * omega_n;
   if (resisting) {
     out.couple += N * tau_r;
@@ -180,7 +178,7 @@ StickForce stick_force_finite(const Model& model, const detail::RigidBody& b) {
   return out;
 }
 
-void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b, Dynamics& out) {
+void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b, ContactDynamics& out) {
   const StickForce st = stick_force_finite(model, b);
   out.contact_force = st.force;
   out.normal_force = st.force.z();
@@ -193,18 +191,17 @@ void rolling_contact_force_finite(const Model& model, const detail::RigidBody& b
   out.dissipation = -out.couple.dot(b.w);
 }
 
-// One mode's motion; a template so that the hot slipping path compiles without the other modes' code, and the
-// point contact without the finite contact's (kFinite: physics.md section 12).
-// The point contact's motion fills a PointContactDynamics (or a Dynamics, whose finite-contact fields it leaves).
-template <bool kFinite>
-using MotionOut = std::conditional_t<kFinite, Dynamics, PointContactDynamics>;
+// One mode's motion; a template so that the hot slipping path compiles without the other modes' code, and each
+// contact model without the code of the richer ones (physics.md section 12).
+template <ContactModel kContact>
+using MotionOut = std::conditional_t<kContact == ContactModel::point, PointContactDynamics, ContactDynamics>;
 
-template <ContactMode kMode, bool kFinite>
-void motion(const Model& model, const StateVector& y, MotionOut<kFinite>& out, double& painleve) {
+// Expects out's finite-contact fields zero (a fresh ContactDynamics, or cleared by evaluate_dynamics).
+template <ContactMode kMode, ContactModel kContact>
+void motion(const Model& model, const StateVector& y, MotionOut<kContact>& out, double& painleve) {
+  constexpr bool kFinite = kContact != ContactModel::point, kExtras = kContact == ContactModel::finite;
   detail::RigidBody b(model, y);
-  if constexpr (kFinite) {  // a reused Dynamics (the sample's) must not keep the last mode's patch
-    out.patch_radius = out.drilling_torque = 0.0;
-    out.couple.setZero();
+  if constexpr (kExtras) {
     if (model.air.active()) add_air(model, b, out);
   }
   if constexpr (kFinite && kMode == ContactMode::slipping)
@@ -214,7 +211,7 @@ void motion(const Model& model, const StateVector& y, MotionOut<kFinite>& out, d
   painleve = ModeMargins::kNone;
   if constexpr (kMode == ContactMode::slipping) {
     if constexpr (kFinite)
-      slipping_force_finite(model, b, out, painleve);
+      slipping_force_finite<kExtras>(model, b, out, painleve);
     else
       slipping_force(model, b, out, painleve);
   } else {
@@ -239,7 +236,7 @@ void motion(const Model& model, const StateVector& y, MotionOut<kFinite>& out, d
   if constexpr (kMode != ContactMode::flight) out.a_m.z() = 0.0;  // the contact holds n . a_m = 0
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
-  if constexpr (kFinite) {
+  if constexpr (kExtras) {
     if (model.air.active()) {
       const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
       out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
@@ -258,32 +255,31 @@ double cos_max_tilt(const Model& model) {
   return cosine;
 }
 
-template <bool kFinite>
+template <ContactModel kContact>
 [[gnu::always_inline]] inline void evaluate_motion_in(ContactMode mode, const Model& model, const StateVector& y,
-                                                      MotionOut<kFinite>& out, double& painleve) {
+                                                      MotionOut<kContact>& out, double& painleve) {
   switch (mode) {
-    case ContactMode::slipping: motion<ContactMode::slipping, kFinite>(model, y, out, painleve); break;
-    case ContactMode::rolling: motion<ContactMode::rolling, kFinite>(model, y, out, painleve); break;
-    case ContactMode::flight: motion<ContactMode::flight, kFinite>(model, y, out, painleve); break;
+    case ContactMode::slipping: motion<ContactMode::slipping, kContact>(model, y, out, painleve); break;
+    case ContactMode::rolling: motion<ContactMode::rolling, kContact>(model, y, out, painleve); break;
+    case ContactMode::flight: motion<ContactMode::flight, kContact>(model, y, out, painleve); break;
   }
 }
 
 }  // namespace
 
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
-  // A point contact never writes the finite contact's fields: clear what an earlier patch left (derivative()
-  // needs no clearing, its Dynamics is fresh).
+  // motion() expects the finite contact's fields zero: clear what an earlier evaluation left (a right-hand side
+  // needs no clearing, its ContactDynamics is fresh).
   const bool point = point_contact(model);
   ContactForceRecord record;
-  if (point) {
-    out.patch_radius = out.drilling_torque = 0.0;
-    out.couple.setZero();
-    out.air_force.setZero();
-    out.air_torque.setZero();
-    evaluate_motion_in<false>(mode, model, y, out, record.painleve);
-  } else {
-    evaluate_motion_in<true>(mode, model, y, out, record.painleve);
-  }
+  out.patch_radius = out.drilling_torque = 0.0;
+  out.couple.setZero();
+  out.air_force.setZero();
+  out.air_torque.setZero();
+  if (point)
+    evaluate_motion_in<ContactModel::point>(mode, model, y, out, record.painleve);
+  else
+    evaluate_motion_in<ContactModel::finite>(mode, model, y, out, record.painleve);
   record.force = out.contact_force;
   record.drilling_torque = out.drilling_torque;
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
@@ -328,15 +324,15 @@ double jellett(const Model& model, const StateVector& y) {
 namespace {
 
 // Inlined into model_derivative: one call less per right-hand side.
-template <bool kFinite>
+template <ContactModel kContact>
 [[gnu::always_inline]] inline void derivative_in(const Model& model, ContactMode mode, const StateVector& y,
                                                  StateVector& dydt, ContactForceRecord* record) {
-  MotionOut<kFinite> dyn;
+  MotionOut<kContact> dyn;
   double painleve;
-  evaluate_motion_in<kFinite>(mode, model, y, dyn, painleve);
+  evaluate_motion_in<kContact>(mode, model, y, dyn, painleve);
   if (record) {
     record->force = dyn.contact_force;
-    if constexpr (kFinite) record->drilling_torque = dyn.drilling_torque;
+    if constexpr (kContact != ContactModel::point) record->drilling_torque = dyn.drilling_torque;
     record->painleve = painleve;
   }
   const Eigen::Vector3d f_dot = angular_velocity(y).cross(figure_axis(y));  // keeps |f_hat| in the exact flow
@@ -356,14 +352,22 @@ template <bool kFinite>
   dydt[idx::psi] = dyn.psi_dot;
 }
 
+// The full model's right-hand side; inlined into model_derivative (one call less per right-hand side).
+[[gnu::always_inline]] inline void full_derivative(const Model& model, ContactModel contact, ContactMode mode,
+                                                   const StateVector& y, StateVector& dydt, ContactForceRecord* record) {
+  if (contact == ContactModel::point)
+    derivative_in<ContactModel::point>(model, mode, y, dydt, record);
+  else if (contact == ContactModel::patch)
+    derivative_in<ContactModel::patch>(model, mode, y, dydt, record);
+  else
+    derivative_in<ContactModel::finite>(model, mode, y, dydt, record);
+}
+
 }  // namespace
 
 void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                 ContactForceRecord* record) {
-  if (point_contact(model))
-    derivative_in<false>(model, mode, y, dydt, record);
-  else
-    derivative_in<true>(model, mode, y, dydt, record);
+  full_derivative(model, contact_model(model), mode, y, dydt, record);
 }
 
 void jacobian_difference_steps(const Model& model, ContactMode mode, const StateVector& y, StateVector& max_step) {
@@ -412,10 +416,8 @@ void model_derivative(const Model& model, ContactModel contact, ContactMode mode
                       StateVector& dydt, ContactForceRecord* record) {
   if (model.kind == ModelKind::adiabatic)
     adiabatic_derivative(model, y, dydt);
-  else if (contact == ContactModel::point)
-    derivative_in<false>(model, mode, y, dydt, record);
   else
-    derivative_in<true>(model, mode, y, dydt, record);
+    full_derivative(model, contact, mode, y, dydt, record);
 }
 
 }  // namespace top_sim
