@@ -36,6 +36,9 @@ struct Command {
 // change keeps the transverse angular velocity and the rotor's absolute spin). Validate first.
 void apply_command(const Command& command, Model& model, StateVector& y);
 
+// The model's part of apply_command: every field but spin and rotor_spin, which change the state only.
+void apply_to_model(const Command& command, Model& model);
+
 // Empty when the command can be applied to this model, else "field = value: allowed range".
 std::string validate(const Command& command, const Model& model);
 

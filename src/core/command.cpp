@@ -98,10 +98,7 @@ std::string validate(const Command& c, const Model& model) {
   return validate_in_kind(c, model);
 }
 
-void apply_command(const Command& c, Model& model, StateVector& y) {
-  const Eigen::Vector3d f_hat = figure_axis(y).normalized();
-  const double spin = shell_spin(y);
-  const double rotor_spin = spin + y[idx::nu];
+void apply_to_model(const Command& c, Model& model) {
   if (c.inclination) model.plane = make_plane(*c.inclination, model.plane.gravity);
   if (c.friction) model.friction = changed_law(model.friction, *c.friction);
   if (c.static_friction) model.contact.static_friction = *c.static_friction;
@@ -114,8 +111,14 @@ void apply_command(const Command& c, Model& model, StateVector& y) {
   if (c.rolling_resistance) model.finite_contact.rolling_resistance = *c.rolling_resistance;
   if (c.spin_drag) model.air.spin_drag = *c.spin_drag;
   if (c.drag) model.air.drag = *c.drag;
+}
+
+void apply_command(const Command& c, Model& model, StateVector& y) {
+  apply_to_model(c, model);
+  const double spin = shell_spin(y);
   if (c.spin) {
-    set_angular_velocity(y, angular_velocity(y) + (*c.spin - spin) * f_hat);
+    const double rotor_spin = spin + y[idx::nu];
+    set_angular_velocity(y, angular_velocity(y) + (*c.spin - spin) * figure_axis(y).normalized());
     if (model.top.has_rotor) y[idx::nu] = rotor_spin - *c.spin;  // the rotor keeps its absolute spin
   }
   if (c.rotor_spin) y[idx::nu] = *c.rotor_spin - shell_spin(y);

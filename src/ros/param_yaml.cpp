@@ -97,11 +97,7 @@ top_sim::Command start_command(XmlRpc::XmlRpcValue& tree, const top_sim::Model& 
 }
 
 top_sim::Scene start_scene(top_sim::Scene scene, const top_sim::Command& start) {
-  top_sim::Command model_part = start;
-  model_part.spin.reset();  // the initial state's, below
-  top_sim::StateVector unused{};
-  unused[top_sim::idx::f + 2] = 1.0;  // the model's fields do not read the state
-  top_sim::apply_command(model_part, scene.model, unused);
+  top_sim::apply_to_model(start, scene.model);
   if (start.spin) scene.initial.spin = *start.spin;
   if (scene.initial.start == top_sim::StartKind::stationary) {
     const top_sim::StationaryState st = top_sim::stationary_state(scene.model, scene.initial.spin);
