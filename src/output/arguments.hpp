@@ -1,5 +1,5 @@
 // Command-line arguments of the tools: one error type and one exit path for usage and bad arguments (the tools read
-// their command lines with CommandLine, command_line.hpp; top_sim_bag with positional() below).
+// their command lines with CommandLine, command_line.hpp).
 #pragma once
 
 #include <cmath>
@@ -25,16 +25,8 @@ inline double finite_number(const std::string& flag, const std::string& text) {
   return v;
 }
 
-// The tool's one positional argument (`what`: "scene file", "bag") into `slot`; throws for an unknown option or a
-// second one.
-inline void positional(const std::string& a, std::string& slot, const std::string& what) {
-  if (!a.empty() && a[0] == '-') throw BadArgument{"unknown option '" + a + "'"};
-  if (!slot.empty()) throw BadArgument{"more than one " + what + " ('" + slot + "', '" + a + "')"};
-  slot = a;
-}
-
-// The tool's one positional argument (`what`: "scene file"); throws when none (an empty one is none) or more than
-// one was given.
+// The tool's one positional argument (`what`: "scene file", "bag"); throws when none (an empty one is none) or
+// more than one was given.
 inline std::string one_positional(const std::vector<std::string>& given, const std::string& what) {
   if (given.empty() || (given.size() == 1 && given[0].empty())) throw BadArgument{"no " + what + " given"};
   if (given.size() > 1) throw BadArgument{"more than one " + what + " ('" + given[0] + "', '" + given[1] + "')"};

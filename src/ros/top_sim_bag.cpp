@@ -7,7 +7,6 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <functional>
 #include <fstream>
 #include <iostream>
 #include <limits>
@@ -17,6 +16,7 @@
 #include <vector>
 
 #include "arguments.hpp"
+#include "command_line.hpp"
 #include "conversions.hpp"
 #include "plot.hpp"
 #include "writers.hpp"
@@ -54,44 +54,32 @@ struct Arguments {
   double from = -std::numeric_limits<double>::infinity(), to = std::numeric_limits<double>::infinity();
 };
 
-double number(const std::string& flag, const char* value) {
+double number(const std::string& flag, const std::string& value) {
   char* end = nullptr;
-  const double v = std::strtod(value, &end);
-  if (end == value || *end != '\0' || !std::isfinite(v))
+  const double v = std::strtod(value.c_str(), &end);
+  if (value.empty() || *end != '\0' || !std::isfinite(v))
     throw BadArgument{flag + " = '" + value + "': must be a finite number of seconds"};
   return v;
 }
 
 // A non-empty text value.
-std::string text(const std::string& flag, const char* value) {
-  if (*value == '\0') throw BadArgument{flag + " = '': must not be empty"};
+std::string text(const std::string& flag, const std::string& value) {
+  if (value.empty()) throw BadArgument{flag + " = '': must not be empty"};
   return value;
 }
 
 // Reads the command line (throws BadArgument); false when it asked for --help.
 bool parse_arguments(int argc, char** argv, Arguments& args) {
-  using Set = std::function<void(const std::string& flag, const char* value)>;
-  const std::map<std::string, Set> options = {
-      {"--top", [&](const std::string& f, const char* v) { args.top = text(f, v); }},
-      {"--csv", [&](const std::string& f, const char* v) { args.csv = text(f, v); }},
-      {"--json", [&](const std::string& f, const char* v) { args.json = text(f, v); }},
-      {"--plot", [&](const std::string& f, const char* v) { args.plot = text(f, v); }},
-      {"--scene", [&](const std::string& f, const char* v) { args.scene = text(f, v); }},
-      {"--from", [&](const std::string& f, const char* v) { args.from = number(f, v); }},
-      {"--to", [&](const std::string& f, const char* v) { args.to = number(f, v); }}};
-  for (int i = 1; i < argc; ++i) {
-    const std::string a = argv[i];
-    if (a == "-h" || a == "--help") return false;
-    const auto option = options.find(a);
-    if (option == options.end()) {
-      top_sim_cli::positional(a, args.bag, "bag");
-    } else if (i + 1 >= argc) {
-      throw BadArgument{a + ": needs a value"};
-    } else {
-      option->second(a, argv[++i]);
-    }
-  }
-  if (args.bag.empty()) throw BadArgument{"no bag given"};
+  std::vector<std::string> bags;
+  top_sim_cli::CommandLine line;
+  for (auto [flag, slot] : {std::pair{"--top", &args.top}, {"--csv", &args.csv}, {"--json", &args.json},
+                            {"--plot", &args.plot}, {"--scene", &args.scene}})
+    line.value(flag, [flag = std::string(flag), slot = slot](const std::string& v) { *slot = text(flag, v); });
+  line.value("--from", [&](const std::string& v) { args.from = number("--from", v); })
+      .value("--to", [&](const std::string& v) { args.to = number("--to", v); })
+      .positionals(bags);
+  if (!line.parse(argc, argv)) return false;
+  args.bag = top_sim_cli::one_positional(bags, "bag");
   if (args.csv == "-")
     throw BadArgument{"--csv = '-': must be a file name (the CSV is not written to standard output)"};
   if (args.from > args.to)
