@@ -39,6 +39,8 @@ struct StationaryState {
   double mu = 0.0;
   double patch_radius = 0.0;
   double drilling_torque = 0.0;
+  double friction_force = 0.0;  // |F_t| [N]: m g sin(alpha) less the spin-down's deceleration
+  double spin_rate = 0.0;       // d spin / dt from the patch [rad/s^2] (air and bearing not included)
 };
 
 // Stable sleeping state for the model's alpha and friction, at shell spin omega* (signed).
@@ -55,6 +57,7 @@ struct StationaryGeometry {
   bool patch = false;
   StationaryState side[2];
   double side_ratio[2] = {0.0, 0.0};
+  Eigen::Vector2d side_downhill[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 };
 StationaryGeometry stationary_geometry(const Model& model);
 StationaryState stationary_state(const Model& model, const StationaryGeometry& geometry, double spin);

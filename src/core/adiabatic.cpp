@@ -16,26 +16,24 @@ std::string adiabatic_validity(const Model& model) {
 
 namespace {
 
-// On a patch or with air spin drag the sleeping top spins down. Its energy, 1/2 (I_f' + m |u*|^2 / spin^2) spin^2
-// plus the rotor's, changes by the weight's power m g . u* less the dissipation (sliding m g sin(alpha) v_d, drilling
-// -M_n omega_n, air k spin^2) plus the bearing's c nu on the shell: the translational energy of u* rides on the spin.
+// On a patch or with air spin drag the sleeping top spins down: the patch's rate (stationary.cpp, degree 0 in the
+// spin), the air's -k spin and the bearing's c nu over I_f' + m |u_1|^2 (the translational energy of u* rides on the
+// spin; u_1 = u* at unit spin). W_diss books the sliding |F_t| v_d, the drilling -M_n omega_n, k spin^2, c nu^2.
 void spinning_down(const Model& model, const StateVector& y, const StationaryState& unit, double spin,
                    StateVector& dydt) {
   const Top& top = model.top;
-  const double sign = spin >= 0.0 ? 1.0 : -1.0, m = top.mass;
-  const Eigen::Vector3d g = model.plane.g_plane;
-  const double sliding = m * std::abs(std::sin(model.plane.inclination)) * model.plane.gravity * unit.sliding_speed;
-  const double weight = m * (g.x() * unit.velocity.x() + g.y() * unit.velocity.y());
-  // The torque along f_hat* per unit spin sign: (m g . u* - sliding) / spin, the drilling and the air.
-  double torque = sign * (weight - sliding) + unit.drilling_torque * unit.f_hat.z() - model.air.spin_drag * spin;
-  double nu_dot = 0.0, bearing = 0.0;
+  const double sign = spin >= 0.0 ? 1.0 : -1.0;
+  const double inertia = shell_axial_inertia(top) + top.mass * unit.velocity.squaredNorm();
+  double torque = -model.air.spin_drag * spin, nu_dot = 0.0, bearing = 0.0;
   if (top.has_rotor) {
     const double c = top.rotor.coupling, nu = y[idx::nu];
     torque += c * nu;
     bearing = c * nu * nu;
   }
-  const double spin_dot = torque / (shell_axial_inertia(top) + m * unit.velocity.squaredNorm());
+  const double spin_dot = unit.spin_rate + torque / inertia;
   if (top.has_rotor) nu_dot = -top.rotor.coupling * y[idx::nu] / top.rotor.inertia_axial - spin_dot;
+  const double friction = unit.patch_radius > 0.0 ? unit.friction_force
+                         : top.mass * std::abs(std::sin(model.plane.inclination)) * model.plane.gravity;
   const Eigen::Vector2d velocity = std::abs(spin) * unit.velocity, du = sign * unit.velocity * spin_dot;
   dydt.fill(0.0);
   dydt[idx::x] = velocity.x();
@@ -45,7 +43,7 @@ void spinning_down(const Model& model, const StateVector& y, const StationarySta
   for (int i = 0; i < 3; ++i) dydt[idx::omega + i] = spin_dot * unit.f_hat[i];
   dydt[idx::nu] = nu_dot;
   const double drilling = -unit.drilling_torque * unit.f_hat.z() * spin;  // -M_n omega_n >= 0
-  dydt[idx::w_diss] = std::abs(spin) * sliding + drilling + model.air.spin_drag * spin * spin + bearing;
+  dydt[idx::w_diss] = std::abs(spin) * friction * unit.sliding_speed + drilling + model.air.spin_drag * spin * spin + bearing;
   dydt[idx::psi] = spin_phase_rate(unit.f_hat, spin * unit.f_hat);
 }
 

@@ -147,13 +147,25 @@ namespace {
 
 // The patch law of section 12 in a sleeping top of unit spin `sign` f_hat, sliding downhill at v_d. v_eps is left
 // out, as for the point contact: the law is then homogeneous of degree 0 in the speeds, so unit spin stands for all.
+// gravity: g less the sleeping top's own deceleration a = u*' (it spins down): the state is the sleeping state of
+// that frame, where the contact force is m (a - g).
 struct PatchSetting {
   const Model& model;
   double lever;  // Rbar at N = m g cos(alpha)
   double normal_force;
-  Eigen::Vector2d downhill;
   double sign;
+  Eigen::Vector3d gravity;
+  Eigen::Vector2d downhill;  // the direction of gravity's part in the plane
+  double tan_alpha;          // |gravity in the plane| / |gravity along n|
 };
+
+PatchSetting patch_setting(const Model& model, double lever, double normal_force, double sign,
+                           const Eigen::Vector3d& deceleration) {
+  const Eigen::Vector3d g = model.plane.g_plane - deceleration;
+  const Eigen::Vector2d in_plane(g.x(), g.y());
+  const Eigen::Vector2d downhill = in_plane.norm() > 0.0 ? Eigen::Vector2d(in_plane.normalized()) : Eigen::Vector2d::Zero();
+  return PatchSetting{model, lever, normal_force, sign, g, downhill, in_plane.norm() / std::abs(g.z())};
+}
 
 struct PatchBalance {
   bool exists = false;
@@ -215,7 +227,7 @@ Eigen::Vector2d tilt_residual(const PatchSetting& ps, const Eigen::Vector3d& f_h
   const Model& m = ps.model;
   const Eigen::Vector3d rho = -(m.top.com_offset * f_hat + m.top.tip_radius * Eigen::Vector3d::UnitZ());
   const Eigen::Vector3d torque =
-      -m.top.mass * rho.cross(m.plane.g_plane) + ps.normal_force * b.drilling * Eigen::Vector3d::UnitZ();
+      -m.top.mass * rho.cross(ps.gravity) + ps.normal_force * b.drilling * Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d off_axis = torque - torque.dot(f_hat) * f_hat;
   const double scale = m.top.mass * m.plane.gravity * m.top.com_offset;
   return Eigen::Vector2d(e1.dot(off_axis), e2.dot(off_axis)) / scale;
@@ -224,7 +236,7 @@ Eigen::Vector2d tilt_residual(const PatchSetting& ps, const Eigen::Vector3d& f_h
 // f_hat* and v_d on a patch for one sign of the spin: Newton in the tilt from the point contact's f0 (a Jacobian by
 // differences), the force balance solved at each tilt. False when the law cannot hold the top at some tilt.
 bool patch_tilt(const PatchSetting& ps, const Eigen::Vector3d& f0, Eigen::Vector3d& f_hat, PatchBalance& b) {
-  const double tan_alpha = std::abs(std::tan(ps.model.plane.inclination));
+  const double tan_alpha = ps.tan_alpha;
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
   const Eigen::Vector3d e1 = n.cross(f0).norm() > 0.0 ? Eigen::Vector3d(n.cross(f0).normalized())
                                                        : Eigen::Vector3d::UnitX();
@@ -259,33 +271,58 @@ bool patch_tilt(const PatchSetting& ps, const Eigen::Vector3d& f0, Eigen::Vector
 
 namespace {
 
-// One sign of the spin's sleeping state on a patch (side: 0 for spin >= 0, 1 below): f_hat*, s*, mu, M_n and
-// v_d / v_h; false with the reason when the law cannot hold the top (a critical inclination of the patch).
+// The sleeping top's spin rate on a patch (degree 0 in the spin): its energy 1/2 (I_f' + m |u_1|^2) spin^2 changes
+// by the weight's power m g . u less the sliding m |g_t| v_d and the drilling -M_n omega_n (u_1: u* at unit spin).
+double patch_spin_rate(const PatchSetting& ps, const StationaryState& unit, const PatchBalance& b) {
+  const Model& m = ps.model;
+  const double mass = m.top.mass;
+  const Eigen::Vector3d& g = m.plane.g_plane;
+  const double weight = mass * (g.x() * unit.velocity.x() + g.y() * unit.velocity.y());
+  const double sliding = unit.friction_force * b.sliding_speed;
+  const double torque = ps.sign * (weight - sliding) + unit.drilling_torque * unit.f_hat.z();
+  return torque / (shell_axial_inertia(m.top) + mass * unit.velocity.squaredNorm());
+}
+
+// One sign of the spin's sleeping state on a patch (side: 0 for spin >= 0, 1 below): f_hat*, s*, mu, M_n, the
+// spin rate and u* at unit spin; false when the law cannot hold the top (a critical inclination of the patch). The
+// deceleration u*' = u_1 spin' it implies is fed back, three times (each changes phi* by a factor ~1e-5 less).
 bool patch_side(const Model& model, const Eigen::Vector3d& f0, int side, StationaryGeometry& g) {
   const double N = model.top.mass * model.plane.gravity * std::cos(model.plane.inclination);
   const double a = patch_radius(model.finite_contact, model.top.tip_radius, N);
-  const PatchSetting ps{model, drilling_lever(model.finite_contact.pressure, a), N, downhill_direction(model),
-                        side == 0 ? 1.0 : -1.0};
+  const double sign = side == 0 ? 1.0 : -1.0;
   StationaryState& st = g.side[side];
-  PatchBalance b;
-  if (!patch_tilt(ps, f0, st.f_hat, b)) {
-    const double tan_alpha = std::abs(std::tan(model.plane.inclination));
-    std::ostringstream why;
-    why << "on the patch (a = " << a << " m, Rbar = " << ps.lever << " m) the sliding friction mu(s) k_F v_d / |w| "
-        << "of the sleeping top reaches at most " << b.max_force << " < tan(alpha) = " << tan_alpha
-        << ": no sleeping state (critical inclination with the patch about " << std::atan(b.max_force)
-        << " rad, alpha_c = " << critical_inclination(model.friction) << " rad on a point contact); the top slides "
-        << "downhill";
-    g.state.reason = why.str();
-    return false;
+  Eigen::Vector3d deceleration = Eigen::Vector3d::Zero();
+  for (int pass = 0; pass < 3; ++pass) {
+    const PatchSetting ps = patch_setting(model, drilling_lever(model.finite_contact.pressure, a), N, sign, deceleration);
+    PatchBalance b;
+    if (!patch_tilt(ps, f0, st.f_hat, b)) {
+      std::ostringstream why;
+      why << "on the patch (a = " << a << " m, Rbar = " << ps.lever << " m) the sliding friction mu(s) k_F v_d / "
+          << "|w| of the sleeping top reaches at most " << b.max_force << " < tan(alpha) = " << ps.tan_alpha
+          << ": no sleeping state (critical inclination with the patch about " << std::atan(b.max_force)
+          << " rad, alpha_c = " << critical_inclination(model.friction) << " rad on a point contact); the top "
+          << "slides downhill";
+      g.state.reason = why.str();
+      return false;
+    }
+    st.exists = true;
+    st.slip = b.slip;
+    st.mu = b.mu;
+    st.patch_radius = a;
+    st.drilling_torque = N * b.drilling;
+    st.friction_force = N * b.force;
+    st.omega = sign * st.f_hat;
+    const double rolling = model.top.tip_radius * std::hypot(st.f_hat.x(), st.f_hat.y());
+    g.side_ratio[side] = rolling > 0.0 ? b.sliding_speed / rolling : 0.0;
+    g.side_downhill[side] = ps.downhill;
+    set_sleeping_velocity(model, g.side_ratio[side], ps.downhill, st);
+    st.spin_rate = patch_spin_rate(ps, st, b);
+    const Eigen::Vector2d u_dot = sign * st.spin_rate * st.velocity;
+    deceleration = Eigen::Vector3d(u_dot.x(), u_dot.y(), 0.0);
   }
-  st.exists = true;
-  st.slip = b.slip;
-  st.mu = b.mu;
-  st.patch_radius = a;
-  st.drilling_torque = N * b.drilling;
-  const double rolling = model.top.tip_radius * std::hypot(st.f_hat.x(), st.f_hat.y());
-  g.side_ratio[side] = rolling > 0.0 ? b.sliding_speed / rolling : 0.0;
+  st.omega.setZero();
+  st.velocity.setZero();
+  st.phi = st.rolling_speed = st.sliding_speed = 0.0;
   return true;
 }
 
@@ -353,7 +390,7 @@ StationaryState stationary_state(const Model& model, const StationaryGeometry& g
     const int side = spin < 0.0 ? 1 : 0;
     StationaryState st = geometry.side[side];
     st.omega = spin * st.f_hat;
-    set_sleeping_velocity(model, geometry.side_ratio[side], geometry.downhill, st);
+    set_sleeping_velocity(model, geometry.side_ratio[side], geometry.side_downhill[side], st);
     return st;
   }
   StationaryState st = geometry.state;
