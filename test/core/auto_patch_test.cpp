@@ -112,6 +112,24 @@ TEST(AutoPatch, AutoHandsOverOnAHertzPatchAndKeepsTheFullModelsPath) {
   EXPECT_LT(full.snapshot().spin, 190.0);  // it did spin down
 }
 
+// A sleeping top on an elliptic-law Hertz patch spins down past the critical spin of its sleeping state (46 rad/s,
+// top_sim_stability --sweep-spin) and wakes: auto analyses the reduction along each reduced step, resumes the full
+// model where it turns unstable, and the top falls when the full model's does (measured 2540.59 s against 2540.35 s).
+TEST(AutoPatch, AutoResumesTheFullModelWhereTheSpinningDownTopWakes) {
+  const std::string contact = "patch_radius: hertz, drilling_law: elliptic";
+  const std::string start = "start: tilted, tilt: 0.1, spin: 200.0";
+  Simulator full(scene_from(patch_scene(0.1, "full", contact, start)));
+  Simulator automatic(scene_from(patch_scene(0.1, "auto", contact, start)));
+  full.advance_to(3000.0);
+  automatic.advance_to(3000.0);
+  ASSERT_EQ(full.fault(), ContactFault::fallen);
+  ASSERT_EQ(automatic.fault(), ContactFault::fallen);
+  EXPECT_EQ(automatic.handovers(), 1u);
+  EXPECT_GT(automatic.reduced_seconds(), 2000.0);
+  EXPECT_NEAR(automatic.snapshot().t, full.snapshot().t, 2.0);
+  note("fall under auto - under full [s]", automatic.snapshot().t - full.snapshot().t);
+}
+
 // A patch lowers the critical inclination: the law's force mu(s) k_F v_d / |w| stays below mu(s) while the patch
 // pivots. Between the two critical inclinations the point contact sleeps, the patch cannot: the scene refuses the
 // reduced model with the reason, and the full model slides away downhill.
