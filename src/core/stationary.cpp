@@ -163,7 +163,8 @@ PatchSetting patch_setting(const Model& model, double lever, double normal_force
                            const Eigen::Vector3d& deceleration) {
   const Eigen::Vector3d g = model.plane.g_plane - deceleration;
   const Eigen::Vector2d in_plane(g.x(), g.y());
-  const Eigen::Vector2d downhill = in_plane.norm() > 0.0 ? Eigen::Vector2d(in_plane.normalized()) : Eigen::Vector2d::Zero();
+  const Eigen::Vector2d downhill =
+      in_plane.norm() > 0.0 ? Eigen::Vector2d(in_plane.normalized()) : Eigen::Vector2d::Zero();
   return PatchSetting{model, lever, normal_force, sign, g, downhill, in_plane.norm() / std::abs(g.z())};
 }
 
@@ -212,7 +213,8 @@ PatchBalance balancing_speed(const PatchSetting& ps, const Eigen::Vector3d& f_ha
       continue;
     }
     double hi = q;
-    for (double mid = 0.5 * (lo + hi); mid > lo && mid < hi; mid = 0.5 * (lo + hi)) (at(mid).force < tan_alpha ? lo : hi) = mid;
+    for (double mid = 0.5 * (lo + hi); mid > lo && mid < hi; mid = 0.5 * (lo + hi))
+      (at(mid).force < tan_alpha ? lo : hi) = mid;
     b = at(hi);
     b.exists = true;
   }
@@ -259,6 +261,7 @@ bool patch_tilt(const PatchSetting& ps, const Eigen::Vector3d& f0, Eigen::Vector
       if (!scratch.exists) return false;
     }
     const Eigen::Vector2d step = J.partialPivLu().solve(-r);
+    if (!step.allFinite()) return false;  // a singular tilt Jacobian: no state to report rather than a NaN axis
     x += step;
     if (step.norm() < 1e-14) break;
   }
@@ -293,7 +296,8 @@ bool patch_side(const Model& model, const Eigen::Vector3d& f0, int side, Station
   StationaryState& st = g.side[side];
   Eigen::Vector3d deceleration = Eigen::Vector3d::Zero();
   for (int pass = 0; pass < 3; ++pass) {
-    const PatchSetting ps = patch_setting(model, drilling_lever(model.finite_contact.pressure, a), N, sign, deceleration);
+    const double lever = drilling_lever(model.finite_contact.pressure, a);
+    const PatchSetting ps = patch_setting(model, lever, N, sign, deceleration);
     PatchBalance b;
     if (!patch_tilt(ps, f0, st.f_hat, b)) {
       std::ostringstream why;
@@ -326,14 +330,15 @@ bool patch_side(const Model& model, const Eigen::Vector3d& f0, int side, Station
   return true;
 }
 
-// The inputs of a patch's sleeping state: it is solved once per model and thread (a Newton over force balances),
-// while the reduced model asks for it at every right-hand side.
+// The inputs of a patch's sleeping state (I_f' for its spin rate): it is solved once per model and thread (a Newton
+// over force balances), while the reduced model asks for it at every right-hand side.
 bool same_sleeping_inputs(const Model& x, const Model& y) {
   const FrictionLaw &p = x.friction, &q = y.friction;
   const FiniteContact &c = x.finite_contact, &d = y.finite_contact;
   return x.plane.inclination == y.plane.inclination && x.plane.gravity == y.plane.gravity &&
          x.plane.g_plane == y.plane.g_plane && x.top.tip_radius == y.top.tip_radius &&
-         x.top.com_offset == y.top.com_offset && x.top.mass == y.top.mass && p.kind == q.kind && p.mu_c == q.mu_c &&
+         x.top.com_offset == y.top.com_offset && x.top.mass == y.top.mass &&
+         shell_axial_inertia(x.top) == shell_axial_inertia(y.top) && p.kind == q.kind && p.mu_c == q.mu_c &&
          p.s_c == q.s_c && p.mu0 == q.mu0 && p.k == q.k && p.s0 == q.s0 && p.mu == q.mu && p.points == q.points &&
          c.patch_radius == d.patch_radius && c.hertz == d.hertz && c.effective_modulus == d.effective_modulus &&
          c.pressure == d.pressure && c.law == d.law;

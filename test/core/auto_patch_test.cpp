@@ -32,7 +32,8 @@ const char* kAsleep = "start: stationary, spin: 200.0";
 // down at its rate; the reduced model follows it. Measured over 200 s: phi 4e-9 rad apart (Hertz, exact), the spin
 // decay 2e-8 of itself, f_hat 1e-9 rad, where the point contact's f_hat* is 4e-5 rad off.
 TEST(AutoPatch, ReducedModelFollowsTheFullModelFromASleepingStart) {
-  for (const char* contact : {"patch_radius: hertz", "patch_radius: 1.0e-4", "patch_radius: hertz, drilling_law: elliptic"}) {
+  for (const char* contact :
+       {"patch_radius: hertz", "patch_radius: 1.0e-4", "patch_radius: hertz, drilling_law: elliptic"}) {
     Simulator full(scene_from(patch_scene(0.1, "full", contact, kAsleep)));
     Simulator reduced(scene_from(patch_scene(0.1, "adiabatic", contact, kAsleep)));
     ASSERT_EQ(reduced.model().kind, ModelKind::adiabatic);
