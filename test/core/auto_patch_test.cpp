@@ -170,4 +170,27 @@ TEST(AutoPatch, APatchHasACriticalInclinationOfItsOwn) {
   EXPECT_GT(slides.snapshot().phi, 1.2);
 }
 
+// Commands under the reduced model: a patch and spin drag are carried, rolling resistance and drag refused; under
+// adiabatic a patch that the inclination's balance cannot hold is refused with the patch's reason.
+TEST(AutoPatch, CommandsUnderTheReducedModel) {
+  const Scene scene = scene_from(patch_scene(0.2, "adiabatic", "patch_radius: 1.0e-4", kAsleep));
+  Command c;
+  c.patch_radius = 1.0e-3;  // 0.2 rad is below the 1 mm patch's critical inclination (0.2346 rad)
+  c.spin_drag = 1.0e-9;
+  EXPECT_EQ(validate(c, scene.model), "");
+  Command rolling;
+  rolling.rolling_resistance = 1.0e-5;
+  EXPECT_NE(validate(rolling, scene.model).find("rolling_resistance = 1e-05: must be 0 with model.kind adiabatic or "
+                                                "auto (the reduced model carries a patch and air spin drag"),
+            std::string::npos)
+      << validate(rolling, scene.model);
+  Command steep;
+  steep.inclination = 0.24;  // a point contact sleeps here (alpha_c = 0.2450), a 1 mm patch cannot
+  steep.patch_radius = 1.0e-3;
+  EXPECT_NE(validate(steep, scene.model).find("critical inclination with the patch"), std::string::npos)
+      << validate(steep, scene.model);
+  steep.patch_radius = 1.0e-4;
+  EXPECT_EQ(validate(steep, scene.model), "");
+}
+
 }  // namespace
