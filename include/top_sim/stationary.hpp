@@ -34,6 +34,13 @@ struct StationaryState {
   Eigen::Vector3d f_hat = Eigen::Vector3d::UnitZ();
   Eigen::Vector3d omega = Eigen::Vector3d::Zero();
   Eigen::Vector2d velocity = Eigen::Vector2d::Zero();  // u* of the tip-sphere centre
+  // On a patch (physics.md section 12.1): the law's mu(s*), the patch radius at N = m g cos(alpha) and the drilling
+  // torque M_n there (degree 0 in the spin: the same at every spin of one sign); all 0 on a point contact.
+  double mu = 0.0;
+  double patch_radius = 0.0;
+  double drilling_torque = 0.0;
+  double friction_force = 0.0;  // |F_t| [N]: m g sin(alpha) less the spin-down's deceleration
+  double spin_rate = 0.0;       // d spin / dt from the patch [rad/s^2] (air and bearing not included)
 };
 
 // Stable sleeping state for the model's alpha and friction, at shell spin omega* (signed).
@@ -45,6 +52,12 @@ struct StationaryGeometry {
   StationaryState state;                                // omega*, u*, phi* still zero
   double sliding_ratio = 0.0;                           // v_d / v_h = tan(phi+), tan(phi+ / 2) = s*
   Eigen::Vector2d downhill = Eigen::Vector2d::Zero();  // unit vector in the plane; zero on a level plane
+  // A patch's drilling torque tilts f_hat* sideways by a sign of the spin's own: one state per sign
+  // ([0] spin >= 0, [1] spin < 0), each with its sliding_ratio v_d / v_h; unused on a point contact.
+  bool patch = false;
+  StationaryState side[2];
+  double side_ratio[2] = {0.0, 0.0};
+  Eigen::Vector2d side_downhill[2] = {Eigen::Vector2d::Zero(), Eigen::Vector2d::Zero()};
 };
 StationaryGeometry stationary_geometry(const Model& model);
 StationaryState stationary_state(const Model& model, const StationaryGeometry& geometry, double spin);

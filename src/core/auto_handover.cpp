@@ -2,6 +2,9 @@
 // to the full model where the reduction no longer holds or a command arrives (command_queue.cpp).
 #include "simulator_impl.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 namespace top_sim {
 
 // Hand over at this regime point when the reduction is valid at its spin and the decaying modes would still move
@@ -32,23 +35,39 @@ bool SimulatorImpl::take_handover() {
   return true;
 }
 
-// The reduced model has no events. Under auto its regime points are counted; with a spin moved by the bearing,
-// the reduction is analysed again, and where it is no longer valid the full model resumes at t_end.
+// The reduced model has no events. Under auto its regime points are counted; with a spin moved by the bearing, a
+// patch or air, the reduction is analysed again at each 1 % of the spin's change over the step (its dense output:
+// a patch spins down at a constant rate, so one long step can cross a wake-up), and where it is no longer valid the
+// full model resumes there.
 bool SimulatorImpl::scan_reduced(double t_end, const StateVector& y1) {
+  const double t0 = scanned_;
   scanned_ = t_end;
   if (!model_.automatic.enabled) {
     run_cadence(t_end);
     return fault_ == ContactFault::none;
   }
-  skip_cadence(t_end);
-  if (reduction_applies(reduction_, y1)) return true;
-  reduction_ = analyse_reduction(model_, y1);
+  if (reduction_applies(reduction_, y1)) {
+    skip_cadence(t_end);
+    return true;
+  }
+  const double change = std::abs(shell_spin(y1) - reduction_.spin) / (kReanalysedSpin * std::abs(reduction_.spin));
+  const int pieces = static_cast<int>(std::min(std::ceil(std::isfinite(change) ? change : 1.0), 1000.0));
+  StateVector yk = y1;
+  double tk = t_end;
+  for (int k = 1; k <= pieces; ++k) {
+    tk = k == pieces ? t_end : t0 + (t_end - t0) * k / pieces;
+    if (k == pieces) yk = y1; else stepper_->state_at(tk, yk);
+    if (reduction_applies(reduction_, yk)) continue;
+    reduction_ = analyse_reduction(model_, yk);
+    if (!reduction_.valid) break;
+  }
+  skip_cadence(tk);
   if (reduction_.valid) return true;
   {
     std::lock_guard<std::mutex> lock(pending_mutex_);
-    resume_full(t_end);
+    resume_full(tk);
   }
-  restart(y1, t_end, false);
+  restart(yk, tk, false);
   return false;
 }
 

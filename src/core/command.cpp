@@ -26,15 +26,14 @@ std::string validate_ranges(const Command& c) {
   return "";
 }
 
-// physics.md section 12's run-time fields: none > 0 under the reduced model.
+// physics.md section 12's run-time fields the reduced model does not carry (it does carry a patch and spin drag).
 std::string validate_finite_contact(const Command& c, const Model& model) {
   if (model.kind != ModelKind::adiabatic && !model.automatic.enabled) return "";
   for (const CommandField& f : command_fields()) {
-    const bool finite_contact = f.member == &Command::patch_radius || f.member == &Command::rolling_resistance ||
-                                f.member == &Command::spin_drag || f.member == &Command::drag;
-    if (finite_contact && c.*f.member && *(c.*f.member) > 0.0)
-      return bad(f.name, *(c.*f.member), "0 with model.kind adiabatic or auto (the reduced model has no finite "
-                                         "contact or air)");
+    const bool refused = f.member == &Command::rolling_resistance || f.member == &Command::drag;
+    if (refused && c.*f.member && *(c.*f.member) > 0.0)
+      return bad(f.name, *(c.*f.member), "0 with model.kind adiabatic or auto (the reduced model carries a patch "
+                                         "and air spin drag, not rolling resistance or air drag)");
   }
   return "";
 }
@@ -76,10 +75,14 @@ std::string validate_in_kind(const Command& c, const Model& model) {
       return os.str();
     }
   }
-  if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction)) {
+  if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction || c.patch_radius)) {
     Model next = model;
     if (c.inclination) next.plane = make_plane(*c.inclination, model.plane.gravity);
     if (c.friction) next.friction = changed_law(model.friction, *c.friction);
+    if (c.patch_radius) {
+      next.finite_contact.hertz = false;
+      next.finite_contact.patch_radius = *c.patch_radius;
+    }
     const std::string e = adiabatic_validity(next);
     if (!e.empty()) return e;
   }

@@ -121,7 +121,10 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   if (model.kind == ModelKind::adiabatic) {
     // The reduced model slides at s* with mu(s*) = tan(alpha) and N = m g cos(alpha) by construction.
     s.slip = stationary.slip;
-    s.mu = std::tan(std::abs(model.plane.inclination));
+    // On a patch mu(s*) k_F v_d / |w| = tan(alpha): mu itself is the law's (physics.md section 12.1).
+    s.mu = stationary.patch_radius > 0.0 ? stationary.mu : std::tan(std::abs(model.plane.inclination));
+    s.drilling_torque = stationary.drilling_torque;
+    s.patch_radius = stationary.patch_radius;
     s.normal_force = top.mass * model.plane.gravity * std::cos(model.plane.inclination);
     s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
     s.com_acceleration.setZero();

@@ -307,14 +307,18 @@ void read_air(Section& root, const std::string& file, Model& model) {
   model.air.spin_drag = a.number("spin_drag", 0.0, non_negative, ">= 0 [N m s]");
   model.air.drag = a.number("drag", 0.0, non_negative, ">= 0 [N s/m]");
   a.finish();
-  if (!point_contact(model) && (model.kind == ModelKind::adiabatic || model.automatic.enabled)) {
-    const char* key = model.finite_contact.has_patch()                  ? "contact.patch_radius"
-                      : model.finite_contact.rolling_resistance > 0.0 ? "contact.rolling_resistance"
-                      : model.air.spin_drag > 0.0                       ? "air.spin_drag"
-                                                                        : "air.drag";
-    throw SceneError(file, key, std::string("a finite contact or air needs model.kind: full (kind is ") +
-                                    kind_name(model) + "; the reduced model of physics.md section 7 has no drilling, "
-                                    "rolling resistance or air)");
+  const FiniteContact& fc = model.finite_contact;
+  const bool reduced = model.kind == ModelKind::adiabatic || model.automatic.enabled;
+  if (reduced && (fc.rolling_resistance > 0.0 || model.air.drag > 0.0)) {
+    const char* key = fc.rolling_resistance > 0.0 ? "contact.rolling_resistance" : "air.drag";
+    throw SceneError(file, key, std::string("0 with model.kind ") + kind_name(model) + " (the reduced model of "
+                                "physics.md section 7 carries a patch and air spin drag, not rolling resistance or "
+                                "air drag); use model.kind: full");
+  }
+  // The patch's sleeping state (physics.md section 12.1) has a critical inclination of its own.
+  if (model.kind == ModelKind::adiabatic && fc.has_patch()) {
+    const std::string e = adiabatic_validity(model);
+    if (!e.empty()) throw SceneError(file, "model.kind", e);
   }
 }
 

@@ -1,6 +1,7 @@
 // The sleeping state and its analytic results (physics.md section 5).
 #include "top_sim/stationary.hpp"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -141,10 +142,237 @@ bool sleeping_geometry(const Model& model, StationaryState& st) {
 
 }  // namespace
 
+
+namespace {
+
+// The patch law of section 12 in a sleeping top of unit spin `sign` f_hat, sliding downhill at v_d. v_eps is left
+// out, as for the point contact: the law is then homogeneous of degree 0 in the speeds, so unit spin stands for all.
+// gravity: g less the sleeping top's own deceleration a = u*' (it spins down): the state is the sleeping state of
+// that frame, where the contact force is m (a - g).
+struct PatchSetting {
+  const Model& model;
+  double lever;  // Rbar at N = m g cos(alpha)
+  double normal_force;
+  double sign;
+  Eigen::Vector3d gravity;
+  Eigen::Vector2d downhill;  // the direction of gravity's part in the plane
+  double tan_alpha;          // |gravity in the plane| / |gravity along n|
+};
+
+PatchSetting patch_setting(const Model& model, double lever, double normal_force, double sign,
+                           const Eigen::Vector3d& deceleration) {
+  const Eigen::Vector3d g = model.plane.g_plane - deceleration;
+  const Eigen::Vector2d in_plane(g.x(), g.y());
+  const Eigen::Vector2d downhill =
+      in_plane.norm() > 0.0 ? Eigen::Vector2d(in_plane.normalized()) : Eigen::Vector2d::Zero();
+  return PatchSetting{model, lever, normal_force, sign, g, downhill, in_plane.norm() / std::abs(g.z())};
+}
+
+struct PatchBalance {
+  bool exists = false;
+  double sliding_speed = 0.0;  // v_d at unit spin
+  double slip = 0.0, mu = 0.0;
+  double force = 0.0;     // |F_t| / N = mu k_F v_d / |w|
+  double drilling = 0.0;  // M_n / N [m]
+  double max_force = 0.0;
+};
+
+PatchBalance patch_balance(const PatchSetting& ps, const Eigen::Vector3d& f_hat, double v_d) {
+  const Eigen::Vector3d w = ps.sign * f_hat;
+  const double R = ps.model.top.tip_radius;
+  const Eigen::Vector2d rolling(R * w.y(), -R * w.x());
+  const double pivot = ps.lever * std::abs(w.z()), slip_norm = std::hypot(v_d, pivot);  // |w| of section 12
+  PatchBalance b;
+  b.sliding_speed = v_d;
+  b.slip = slip_norm / ((rolling + v_d * ps.downhill).norm() + rolling.norm() + pivot);
+  b.mu = friction_coefficient(ps.model.friction, b.slip);
+  const FiniteContact& fc = ps.model.finite_contact;
+  const DrillingFactors k = drilling_factors(fc.law, fc.pressure, v_d, pivot);
+  b.force = b.mu * k.force * v_d / slip_norm;
+  b.drilling = -b.mu * ps.lever * k.torque * ps.lever * w.z() / slip_norm;
+  return b;
+}
+
+// The lowest sliding speed where the law balances the weight's downhill part, mu k_F v_d / |w| = tan(alpha) (the
+// stable branch: the force grows through it), scanned in q with v_d = S q / (1 - q), S = v_h + Rbar |omega_n|.
+PatchBalance balancing_speed(const PatchSetting& ps, const Eigen::Vector3d& f_hat, double tan_alpha) {
+  const double scale =
+      ps.model.top.tip_radius * std::hypot(f_hat.x(), f_hat.y()) + ps.lever * std::abs(f_hat.z());
+  auto at = [&](double q) { return patch_balance(ps, f_hat, scale * q / (1.0 - q)); };
+  PatchBalance b = at(0.0);
+  b.exists = tan_alpha == 0.0;  // a level plane: pure pivoting, v_d = 0
+  if (b.exists) return b;
+  constexpr int kScan = 256;
+  double lo = 0.0, max_force = 0.0;
+  for (int i = 1; i < kScan && !b.exists; ++i) {
+    const double q = static_cast<double>(i) / kScan;
+    const double force = at(q).force;
+    max_force = std::max(max_force, force);
+    if (force < tan_alpha) {
+      lo = q;
+      continue;
+    }
+    double hi = q;
+    for (double mid = 0.5 * (lo + hi); mid > lo && mid < hi; mid = 0.5 * (lo + hi))
+      (at(mid).force < tan_alpha ? lo : hi) = mid;
+    b = at(hi);
+    b.exists = true;
+  }
+  b.max_force = max_force;
+  return b;
+}
+
+// The torque about the centre of mass of a sleeping top (contact force -m g, drilling torque M_n n) off the figure
+// axis, on e1 and e2 over m g f: zero where f_hat stays put.
+Eigen::Vector2d tilt_residual(const PatchSetting& ps, const Eigen::Vector3d& f_hat, const PatchBalance& b,
+                              const Eigen::Vector3d& e1, const Eigen::Vector3d& e2) {
+  const Model& m = ps.model;
+  const Eigen::Vector3d rho = -(m.top.com_offset * f_hat + m.top.tip_radius * Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d torque =
+      -m.top.mass * rho.cross(ps.gravity) + ps.normal_force * b.drilling * Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d off_axis = torque - torque.dot(f_hat) * f_hat;
+  const double scale = m.top.mass * m.plane.gravity * m.top.com_offset;
+  return Eigen::Vector2d(e1.dot(off_axis), e2.dot(off_axis)) / scale;
+}
+
+// f_hat* and v_d on a patch for one sign of the spin: Newton in the tilt from the point contact's f0 (a Jacobian by
+// differences), the force balance solved at each tilt. False when the law cannot hold the top at some tilt.
+bool patch_tilt(const PatchSetting& ps, const Eigen::Vector3d& f0, Eigen::Vector3d& f_hat, PatchBalance& b) {
+  const double tan_alpha = ps.tan_alpha;
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d e1 = n.cross(f0).norm() > 0.0 ? Eigen::Vector3d(n.cross(f0).normalized())
+                                                       : Eigen::Vector3d::UnitX();
+  const Eigen::Vector3d e2 = f0.cross(e1);
+  auto axis = [&](const Eigen::Vector2d& x) { return Eigen::Vector3d((f0 + x[0] * e1 + x[1] * e2).normalized()); };
+  auto residual = [&](const Eigen::Vector2d& x, PatchBalance& out) {
+    out = balancing_speed(ps, axis(x), tan_alpha);
+    return out.exists ? tilt_residual(ps, axis(x), out, e1, e2) : Eigen::Vector2d::Zero();
+  };
+  Eigen::Vector2d x = Eigen::Vector2d::Zero();
+  constexpr double kStep = 1e-7;  // the tilt's difference step [rad]: the residual is smooth on that scale
+  for (int iteration = 0; iteration < 30; ++iteration) {
+    const Eigen::Vector2d r = residual(x, b);
+    if (!b.exists) return false;
+    Eigen::Matrix2d J;
+    PatchBalance scratch;
+    for (int j = 0; j < 2; ++j) {
+      const Eigen::Vector2d dx = kStep * Eigen::Vector2d::Unit(j);
+      J.col(j) = (residual(x + dx, scratch) - r) / kStep;
+      if (!scratch.exists) return false;
+    }
+    const Eigen::Vector2d step = J.partialPivLu().solve(-r);
+    if (!step.allFinite()) return false;  // a singular tilt Jacobian: no state to report rather than a NaN axis
+    x += step;
+    if (step.norm() < 1e-14) break;
+  }
+  f_hat = axis(x);
+  residual(x, b);
+  return b.exists;
+}
+
+}  // namespace
+
+namespace {
+
+// The sleeping top's spin rate on a patch (degree 0 in the spin): its energy 1/2 (I_f' + m |u_1|^2) spin^2 changes
+// by the weight's power m g . u less the sliding m |g_t| v_d and the drilling -M_n omega_n (u_1: u* at unit spin).
+double patch_spin_rate(const PatchSetting& ps, const StationaryState& unit, const PatchBalance& b) {
+  const Model& m = ps.model;
+  const double mass = m.top.mass;
+  const Eigen::Vector3d& g = m.plane.g_plane;
+  const double weight = mass * (g.x() * unit.velocity.x() + g.y() * unit.velocity.y());
+  const double sliding = unit.friction_force * b.sliding_speed;
+  const double torque = ps.sign * (weight - sliding) + unit.drilling_torque * unit.f_hat.z();
+  return torque / (shell_axial_inertia(m.top) + mass * unit.velocity.squaredNorm());
+}
+
+// One sign of the spin's sleeping state on a patch (side: 0 for spin >= 0, 1 below): f_hat*, s*, mu, M_n, the
+// spin rate and u* at unit spin; false when the law cannot hold the top (a critical inclination of the patch). The
+// deceleration u*' = u_1 spin' it implies is fed back, three times (each changes phi* by a factor ~1e-5 less).
+bool patch_side(const Model& model, const Eigen::Vector3d& f0, int side, StationaryGeometry& g) {
+  const double N = model.top.mass * model.plane.gravity * std::cos(model.plane.inclination);
+  const double a = patch_radius(model.finite_contact, model.top.tip_radius, N);
+  const double sign = side == 0 ? 1.0 : -1.0;
+  StationaryState& st = g.side[side];
+  Eigen::Vector3d deceleration = Eigen::Vector3d::Zero();
+  for (int pass = 0; pass < 3; ++pass) {
+    const double lever = drilling_lever(model.finite_contact.pressure, a);
+    const PatchSetting ps = patch_setting(model, lever, N, sign, deceleration);
+    PatchBalance b;
+    if (!patch_tilt(ps, f0, st.f_hat, b)) {
+      std::ostringstream why;
+      why << "on the patch (a = " << a << " m, Rbar = " << ps.lever << " m) the sliding friction mu(s) k_F v_d / "
+          << "|w| of the sleeping top reaches at most " << b.max_force << " < tan(alpha) = " << ps.tan_alpha
+          << ": no sleeping state (critical inclination with the patch about " << std::atan(b.max_force)
+          << " rad, alpha_c = " << critical_inclination(model.friction) << " rad on a point contact); the top "
+          << "slides downhill";
+      g.state.reason = why.str();
+      return false;
+    }
+    st.exists = true;
+    st.slip = b.slip;
+    st.mu = b.mu;
+    st.patch_radius = a;
+    st.drilling_torque = N * b.drilling;
+    st.friction_force = N * b.force;
+    st.omega = sign * st.f_hat;
+    const double rolling = model.top.tip_radius * std::hypot(st.f_hat.x(), st.f_hat.y());
+    g.side_ratio[side] = rolling > 0.0 ? b.sliding_speed / rolling : 0.0;
+    g.side_downhill[side] = ps.downhill;
+    set_sleeping_velocity(model, g.side_ratio[side], ps.downhill, st);
+    st.spin_rate = patch_spin_rate(ps, st, b);
+    const Eigen::Vector2d u_dot = sign * st.spin_rate * st.velocity;
+    deceleration = Eigen::Vector3d(u_dot.x(), u_dot.y(), 0.0);
+  }
+  st.omega.setZero();
+  st.velocity.setZero();
+  st.phi = st.rolling_speed = st.sliding_speed = 0.0;
+  return true;
+}
+
+// The inputs of a patch's sleeping state (I_f' for its spin rate): it is solved once per model and thread (a Newton
+// over force balances), while the reduced model asks for it at every right-hand side.
+bool same_sleeping_inputs(const Model& x, const Model& y) {
+  const FrictionLaw &p = x.friction, &q = y.friction;
+  const FiniteContact &c = x.finite_contact, &d = y.finite_contact;
+  return x.plane.inclination == y.plane.inclination && x.plane.gravity == y.plane.gravity &&
+         x.plane.g_plane == y.plane.g_plane && x.top.tip_radius == y.top.tip_radius &&
+         x.top.com_offset == y.top.com_offset && x.top.mass == y.top.mass &&
+         shell_axial_inertia(x.top) == shell_axial_inertia(y.top) && p.kind == q.kind && p.mu_c == q.mu_c &&
+         p.s_c == q.s_c && p.mu0 == q.mu0 && p.k == q.k && p.s0 == q.s0 && p.mu == q.mu && p.points == q.points &&
+         c.patch_radius == d.patch_radius && c.hertz == d.hertz && c.effective_modulus == d.effective_modulus &&
+         c.pressure == d.pressure && c.law == d.law;
+}
+
+StationaryGeometry solve_patch_geometry(const Model& model, StationaryGeometry g) {
+  const Eigen::Vector3d f0 = g.state.f_hat;  // the point contact's, where the Newton starts
+  g.patch = true;
+  g.downhill = downhill_direction(model);
+  g.state.exists = patch_side(model, f0, 0, g) && patch_side(model, f0, 1, g);
+  g.state.slip_unstable = -1.0;  // the scan stops at the stable root
+  if (!g.state.exists) g.state.f_hat = Eigen::Vector3d::UnitZ();
+  return g;
+}
+
+StationaryGeometry patch_geometry(const Model& model, const StationaryGeometry& point) {
+  thread_local bool cached = false;
+  thread_local Model key;
+  thread_local StationaryGeometry value;
+  if (!cached || !same_sleeping_inputs(model, key)) {
+    value = solve_patch_geometry(model, point);
+    key = model;
+    cached = true;
+  }
+  return value;
+}
+
+}  // namespace
+
 StationaryGeometry stationary_geometry(const Model& model) {
   StationaryGeometry g;
   StationaryState& st = g.state;
   if (!sleeping_geometry(model, st)) return g;
+  if (model.finite_contact.has_patch()) return patch_geometry(model, g);
   const double alpha = model.plane.inclination;
   if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
     std::ostringstream why;
@@ -163,6 +391,13 @@ StationaryGeometry stationary_geometry(const Model& model) {
 
 StationaryState stationary_state(const Model& model, const StationaryGeometry& geometry, double spin) {
   count(work_counters().stationary_solves);
+  if (geometry.patch && geometry.state.exists) {
+    const int side = spin < 0.0 ? 1 : 0;
+    StationaryState st = geometry.side[side];
+    st.omega = spin * st.f_hat;
+    set_sleeping_velocity(model, geometry.side_ratio[side], geometry.side_downhill[side], st);
+    return st;
+  }
   StationaryState st = geometry.state;
   if (!st.exists) return st;
   st.omega = spin * st.f_hat;

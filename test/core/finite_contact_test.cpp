@@ -299,7 +299,14 @@ TEST(FiniteContactScene, BadInputNamesKeyValueAndRange) {
   EXPECT_NE(error(base + "air: {drag: -1}").find("air.drag: -1 is out of range; must be >= 0"), std::string::npos);
   EXPECT_NE(error(base + "air: {spin_drag: inf}").find("air.spin_drag"), std::string::npos);
   EXPECT_NE(error(base + "contact: {drilling_law: ellipse}").find("contact.drilling_law: 'ellipse' is not one of exact | elliptic"), std::string::npos);
-  EXPECT_NE(error(base + "model: {kind: adiabatic}\ncontact: {patch_radius: 1.0e-4}").find("needs model.kind: full"), std::string::npos);
+  // The reduced model carries a patch and air spin drag (physics.md section 12.1), not rolling resistance or drag.
+  EXPECT_EQ(error(base + "model: {kind: adiabatic}\ncontact: {patch_radius: 1.0e-4}\nair: {spin_drag: 1.0e-9}"), "accepted");
+  EXPECT_NE(error(base + "model: {kind: auto}\ncontact: {rolling_resistance: 1.0e-5}")
+                .find("contact.rolling_resistance: 0 with model.kind auto (the reduced model of physics.md section 7 "
+                      "carries a patch and air spin drag, not rolling resistance or air drag); use model.kind: full"),
+            std::string::npos);
+  EXPECT_NE(error(base + "model: {kind: adiabatic}\nair: {drag: 1.0e-6}").find("air.drag: 0 with model.kind adiabatic"),
+            std::string::npos);
 }
 
 TEST(FiniteContactCommand, RefusedValuesLeaveTheModel) {
