@@ -6,6 +6,7 @@
 
 #include "counters.hpp"
 #include "simulator_impl.hpp"
+#include "top_sim/adiabatic.hpp"
 #include "top_sim/orientation.hpp"
 #include "top_sim/pose.hpp"
 
@@ -128,6 +129,12 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
     s.normal_force = top.mass * model.plane.gravity * std::cos(model.plane.inclination);
     s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
     s.com_acceleration.setZero();
+    if (!point_contact(model)) {  // a top spinning down: u* slows with the spin (w || f_hat, so a_cm = u')
+      StateVector dydt;
+      adiabatic_derivative(model, y, dydt);
+      s.com_acceleration = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], 0.0);
+      s.friction_force += top.mass * s.com_acceleration;
+    }
   } else {
     s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;
