@@ -93,6 +93,29 @@ SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const St
   return a;
 }
 
+namespace {
+
+// The reduced model's contact: it slides at s* with N = m g cos(alpha) by construction; on a patch
+// mu(s*) k_F v_d / |w| = tan(alpha), so mu is the law's (physics.md section 12.1), and a top spinning down slows its
+// drift with the spin (w || f_hat, so a_cm = u').
+void reduced_contact(const Model& model, const StateVector& y, const StationaryState& stationary, Snapshot& s) {
+  const Top& top = model.top;
+  s.slip = stationary.slip;
+  s.mu = stationary.patch_radius > 0.0 ? stationary.mu : std::tan(std::abs(model.plane.inclination));
+  s.drilling_torque = stationary.drilling_torque;
+  s.patch_radius = stationary.patch_radius;
+  s.normal_force = top.mass * model.plane.gravity * std::cos(model.plane.inclination);
+  s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
+  s.com_acceleration.setZero();
+  if (point_contact(model)) return;
+  StateVector dydt;
+  adiabatic_derivative(model, y, dydt);
+  s.com_acceleration = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], 0.0);
+  s.friction_force += top.mass * s.com_acceleration;
+}
+
+}  // namespace
+
 Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
                        const SampleAnalysis& analysis, Regime regime, ContactMode mode) {
   Snapshot s;
@@ -120,21 +143,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.rotor_spin = top.has_rotor ? s.spin + y[idx::nu] : 0.0;
   s.spin_phase = y[idx::psi];
   if (model.kind == ModelKind::adiabatic) {
-    // The reduced model slides at s* with mu(s*) = tan(alpha) and N = m g cos(alpha) by construction.
-    s.slip = stationary.slip;
-    // On a patch mu(s*) k_F v_d / |w| = tan(alpha): mu itself is the law's (physics.md section 12.1).
-    s.mu = stationary.patch_radius > 0.0 ? stationary.mu : std::tan(std::abs(model.plane.inclination));
-    s.drilling_torque = stationary.drilling_torque;
-    s.patch_radius = stationary.patch_radius;
-    s.normal_force = top.mass * model.plane.gravity * std::cos(model.plane.inclination);
-    s.friction_force = -top.mass * Eigen::Vector3d(model.plane.g_plane.x(), model.plane.g_plane.y(), 0.0);
-    s.com_acceleration.setZero();
-    if (!point_contact(model)) {  // a top spinning down: u* slows with the spin (w || f_hat, so a_cm = u')
-      StateVector dydt;
-      adiabatic_derivative(model, y, dydt);
-      s.com_acceleration = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], 0.0);
-      s.friction_force += top.mass * s.com_acceleration;
-    }
+    reduced_contact(model, y, stationary, s);
   } else {
     s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;
