@@ -108,7 +108,9 @@ TEST(AutoPatch, AutoHandsOverOnAHertzPatchAndKeepsTheFullModelsPath) {
     const double distance = (a.contact_point - f.contact_point).norm();
     EXPECT_LT(distance, 1e-5) << "t = " << t;
     // At 300 s the full model still precesses (phi 1.1e-4 rad off phi*, within the contact point's tolerance).
-    if (t == 600.0) EXPECT_NEAR(a.phi, f.phi, 1e-6);
+    if (t == 600.0) {
+      EXPECT_NEAR(a.phi, f.phi, 1e-6);
+    }
     EXPECT_NEAR(a.spin, f.spin, 1e-6 * std::abs(f.spin)) << "t = " << t;
     note("auto vs full on a Hertz patch, phi at " + std::to_string(t) + " s [rad]", a.phi - f.phi);
     note("auto vs full on a Hertz patch, spin at " + std::to_string(t) + " s [rad/s]", a.spin - f.spin);
