@@ -54,8 +54,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
   if (c.static_friction || c.friction) {
     // mu_s must stay >= mu(0) of the law in force after the command.
     Model next = model;
-    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
-    if (c.static_friction) next.contact.static_friction = *c.static_friction;
+    apply_to_model(c, next);
     const double mu0 = friction_coefficient(next.friction, 0.0);
     if (c.static_friction) {
       const double v = *c.static_friction;
@@ -77,12 +76,7 @@ std::string validate_in_kind(const Command& c, const Model& model) {
   }
   if (model.kind == ModelKind::adiabatic && (c.inclination || c.friction || c.patch_radius)) {
     Model next = model;
-    if (c.inclination) next.plane = make_plane(*c.inclination, model.plane.gravity);
-    if (c.friction) next.friction = changed_law(model.friction, *c.friction);
-    if (c.patch_radius) {
-      next.finite_contact.hertz = false;
-      next.finite_contact.patch_radius = *c.patch_radius;
-    }
+    apply_to_model(c, next);  // the model the command would leave
     const std::string e = adiabatic_validity(next);
     if (!e.empty()) return e;
   }
