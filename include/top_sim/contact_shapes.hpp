@@ -1,0 +1,50 @@
+// The body's contact shapes on its figure axis (physics.md section 13): spheres and rims, the point where each meets
+// the plane below it, its gap and the kinematics of that point (shape_motion.hpp: a body touching with one).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <cstddef>
+
+
+namespace top_sim {
+
+enum class ShapeKind : unsigned char { sphere, rim };
+const char* to_string(ShapeKind kind);
+
+// A sphere (centre r_cm + offset f_hat) or a rim (a circle of that radius, centred there, normal to f_hat).
+struct ContactShape {
+  ShapeKind kind = ShapeKind::sphere;
+  double offset = 0.0;  // d [m]
+  double radius = 0.0;  // r of a sphere, rho of a rim [m]
+};
+
+// The body's shapes, at most kMaxShapes (a fixed array: no allocation of its own).
+constexpr std::size_t kMaxShapes = 4;
+struct ShapeSet {
+  std::array<ContactShape, kMaxShapes> shape{};
+  std::size_t count = 0;
+};
+
+// Where a shape meets the plane below it (n = e_z), relative to the centre of mass, and how that point moves.
+struct ShapePoint {
+  Eigen::Vector3d r = Eigen::Vector3d::Zero();       // r_k: the lowest point - r_cm
+  Eigen::Vector3d r_rate = Eigen::Vector3d::Zero();  // d r_k / dt: a rim's lowest point runs along the rim
+  double height = 0.0;                               // h(c) = n . r_k: the shape's gap is z_cm + h
+  double height_slope = 0.0;                         // dh / dc
+};
+
+// The tilt's sine s = |n - c f_hat| below which a rim counts as lying flat: its lowest point is then not unique
+// (and h'' = rho / s^3 unbounded), the end state of a disc (physics.md section 13).
+constexpr double kFlatRimSine = 1e-9;
+
+// h(c) with c = n . f_hat: d c - r for a sphere, d c - rho sqrt(1 - c^2) for a rim.
+double shape_height(const ContactShape& shape, double c);
+
+// r_k, its rate at angular velocity w, h and h'; f_hat of unit length. A rim needs s > kFlatRimSine.
+ShapePoint shape_point(const ContactShape& shape, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
+
+// The shape whose lowest point is lowest (the first of equals).
+std::size_t lowest_shape(const ShapeSet& shapes, const Eigen::Vector3d& f_hat);
+
+}  // namespace top_sim

@@ -1,0 +1,38 @@
+// The motion of a rigid axisymmetric body touching the plane with one of its contact shapes (physics.md sections 4,
+// 9 and 13): the contact modes of section 9 with the shape's lowest point r_k as the lever and w x r_k' in the bias,
+// d/dt v_c = K F - b for the material velocity at the contact v_c = v_cm + w x r_k. For the tip sphere it is the
+// motion dynamics.cpp integrates (tested to agree); a point contact, no rotor, no air.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "top_sim/contact_modes.hpp"
+#include "top_sim/contact_shapes.hpp"
+#include "top_sim/model.hpp"
+
+namespace top_sim {
+
+// The default body: the tip sphere of tip_radius, com_offset below the centre of mass.
+inline ContactShape tip_sphere(const Top& top) { return {ShapeKind::sphere, -top.com_offset, top.tip_radius}; }
+
+struct ShapeMotion {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // F at the contact point
+  Eigen::Vector3d a_cm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d omega_dot = Eigen::Vector3d::Zero();
+  Eigen::Vector3d v_t = Eigen::Vector3d::Zero();  // the material velocity at the contact, in-plane
+  double normal_force = 0.0;
+  double mu = 0.0;           // slipping: mu(s); rolling: |F_t| / F_n; flight: 0
+  double slip = 0.0;         // s of section 3, with the contact point's own velocity v_cm + r_k' for u
+  double dissipation = 0.0;  // mu N t_hat . v_t while slipping (rolling does no work)
+  double painleve = ModeMargins::kNone;  // slipping: m n . K d (the fault where <= 0)
+};
+
+// f_hat of unit length; a rim not lying flat (contact_shapes.hpp).
+ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
+                         const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
+
+// The body's energy at centre of mass r_cm in the plane frame (section 4's E, no rotor).
+double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
+                         const Eigen::Vector3d& w);
+
+}  // namespace top_sim
