@@ -87,3 +87,147 @@ TEST(ContactShapes, LowestShapeHandsOverWhereTheHeightsAreLevel) {
 }
 
 }  // namespace
+
+namespace {
+
+// The body's state in centre-of-mass form, as a shape's motion sees it.
+struct Body {
+  Vector3d r_cm, v_cm, f_hat, w;
+  double w_diss = 0.0;
+};
+
+// One classical RK4 step of a body touching with `shape` in `mode` (the test's own integrator: fixed steps).
+void rk4_step(const top_sim::Model& model, const ContactShape& shape, ContactMode mode, Body& y, double h) {
+  struct Rate { Vector3d r, v, f, w; double diss; };
+  auto rate = [&](const Body& b) {
+    const top_sim::ShapeMotion m = top_sim::shape_motion(model, shape, mode, b.v_cm, b.f_hat.normalized(), b.w);
+    return Rate{b.v_cm, m.a_cm, b.w.cross(b.f_hat), m.omega_dot, m.dissipation};
+  };
+  auto plus = [](const Body& b, const Rate& k, double s) {
+    return Body{b.r_cm + s * k.r, b.v_cm + s * k.v, b.f_hat + s * k.f, b.w + s * k.w, b.w_diss + s * k.diss};
+  };
+  const Rate k1 = rate(y), k2 = rate(plus(y, k1, h / 2)), k3 = rate(plus(y, k2, h / 2)), k4 = rate(plus(y, k3, h));
+  y.r_cm += h / 6 * (k1.r + 2 * k2.r + 2 * k3.r + k4.r);
+  y.v_cm += h / 6 * (k1.v + 2 * k2.v + 2 * k3.v + k4.v);
+  y.f_hat += h / 6 * (k1.f + 2 * k2.f + 2 * k3.f + k4.f);
+  y.w += h / 6 * (k1.w + 2 * k2.w + 2 * k3.w + k4.w);
+  y.w_diss += h / 6 * (k1.diss + 2 * k2.diss + 2 * k3.diss + k4.diss);
+  y.f_hat.normalize();
+}
+
+// The tip sphere's motion is the one dynamics.cpp integrates: same force, accelerations and slip at a nutating,
+// sliding state of the default top, slipping and rolling.
+TEST(ShapeMotion, TipSphereAgreesWithTheRightHandSide) {
+  const top_sim::Scene scene = top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 150.0));
+  const top_sim::Model& model = scene.model;
+  top_sim::StateVector y{};
+  const Vector3d f_hat = tilted_axis(0.3, 0.4);
+  top_sim::set_figure_axis(y, f_hat);
+  top_sim::set_angular_velocity(y, 150.0 * f_hat + Vector3d(2.0, -1.0, 0.5));
+  top_sim::set_velocity(y, Eigen::Vector2d(0.03, -0.01));
+  const Vector3d w = top_sim::angular_velocity(y);
+  const Vector3d v_cm = top_sim::velocity3(y) + model.top.com_offset * w.cross(f_hat);
+  for (ContactMode mode : {ContactMode::slipping, ContactMode::rolling}) {
+    top_sim::Dynamics expected;
+    top_sim::evaluate_dynamics(model, mode, y, expected);
+    const top_sim::ShapeMotion m = top_sim::shape_motion(model, top_sim::tip_sphere(model.top), mode, v_cm, f_hat, w);
+    const char* name = top_sim::to_string(mode);
+    EXPECT_LT((m.force - expected.contact_force).norm(), 1e-12 * expected.contact_force.norm()) << name;
+    EXPECT_LT((m.a_cm - expected.a_cm).norm(), 1e-12 * (expected.a_cm.norm() + 9.81)) << name;
+    EXPECT_LT((m.omega_dot - expected.omega_dot).norm(), 1e-12 * expected.omega_dot.norm()) << name;
+    EXPECT_NEAR(m.normal_force, expected.normal_force, 1e-12 * expected.normal_force) << name;
+    EXPECT_NEAR(m.mu, expected.mu, 1e-12) << name;
+    EXPECT_NEAR(m.dissipation, expected.dissipation, 1e-12 * std::abs(expected.dissipation) + 1e-15) << name;
+    if (mode == ContactMode::slipping) {
+      EXPECT_NEAR(m.slip, expected.contact.slip, 1e-13);
+      EXPECT_NEAR(m.painleve, expected.margins.painleve, 1e-12 * std::abs(expected.margins.painleve));
+    }
+  }
+}
+
+// A thin disc (mass 0.4 kg, radius a = 0.04 m: I_d = m a^2 / 4, I_f = m a^2 / 2) rolling on a level plane.
+top_sim::Model thin_disc() {
+  top_sim::Model model;
+  model.top.mass = 0.4;
+  model.top.inertia_transverse = 0.4 * 0.04 * 0.04 / 4;
+  model.top.inertia_axial = 0.4 * 0.04 * 0.04 / 2;
+  model.plane = top_sim::make_plane(0.0, 9.81);
+  model.friction.kind = top_sim::FrictionLawKind::coulomb;
+  model.friction.mu = 0.3;
+  return model;
+}
+
+// The disc at beta to the plane, its centre at rest on the lowest point's vertical, turning at w = Omega (n - c f):
+// w is parallel to the contact radius, so the contact's material velocity is 0 and the contact circles at Omega.
+Body rolling_disc_start(double beta, double Omega) {
+  const Vector3d f_hat(-std::sin(beta), 0.0, std::cos(beta)), n = Vector3d::UnitZ();
+  return Body{Vector3d(0.0, 0.0, 0.04 * std::sin(beta)), Vector3d::Zero(), f_hat, Omega * (n - f_hat.z() * f_hat)};
+}
+
+struct RollingRun {
+  double beta_drift = 0.0, max_centre_speed = 0.0, max_gap = 0.0, max_energy_change = 0.0, max_contact_speed = 0.0;
+};
+
+RollingRun roll(const top_sim::Model& model, double beta, double Omega, double T, double h) {
+  const ContactShape rim{ShapeKind::rim, 0.0, 0.04};
+  Body y = rolling_disc_start(beta, Omega);
+  const double E0 = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+  RollingRun run;
+  for (int k = 0; k < static_cast<int>(std::lround(T / h)); ++k) {
+    rk4_step(model, rim, ContactMode::rolling, y, h);
+    const top_sim::ShapePoint p = top_sim::shape_point(rim, y.f_hat, y.w);
+    run.beta_drift = std::max(run.beta_drift, std::abs(std::acos(y.f_hat.z()) - beta));
+    run.max_centre_speed = std::max(run.max_centre_speed, y.v_cm.norm());
+    run.max_gap = std::max(run.max_gap, std::abs(y.r_cm.z() + p.height));
+    run.max_contact_speed = std::max(run.max_contact_speed, (y.v_cm + y.w.cross(p.r)).norm());
+    const double E = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+    run.max_energy_change = std::max(run.max_energy_change, std::abs(E - E0) / E0);
+  }
+  return run;
+}
+
+// physics.md section 13: a thin disc rolling with its centre at rest has Omega^2 a sin(beta) = 4 g. Started there
+// it stays (beta, the centre at rest, the gap 0, rolling without work); 2 % off that Omega, beta moves.
+TEST(ShapeMotion, RollingDiscSteadyStateIsFourGOverASinBeta) {
+  const top_sim::Model model = thin_disc();
+  for (double beta : {0.2, 0.5, 1.0}) {
+    const double Omega = std::sqrt(4 * 9.81 / (0.04 * std::sin(beta)));
+    const RollingRun steady = roll(model, beta, Omega, 1.0, 2e-5);
+    EXPECT_LT(steady.beta_drift, 1e-9) << "beta " << beta;
+    EXPECT_LT(steady.max_centre_speed, 1e-9) << "beta " << beta;
+    EXPECT_LT(steady.max_gap, 1e-12) << "beta " << beta;
+    EXPECT_LT(steady.max_contact_speed, 1e-10) << "beta " << beta;
+    EXPECT_LT(steady.max_energy_change, 1e-10) << "beta " << beta;
+    const RollingRun off = roll(model, beta, 1.02 * Omega, 1.0, 2e-5);
+    EXPECT_GT(off.beta_drift, 1e-3) << "beta " << beta;
+    EXPECT_LT(off.max_gap, 1e-10) << "beta " << beta;          // still on its rim
+    EXPECT_LT(off.max_energy_change, 1e-9) << "beta " << beta;  // rolling does no work
+  }
+}
+
+// A disc rolling on its rim with its centre pushed sideways, so that it slips (Coulomb, mu 0.3): E + W_diss holds,
+// the gap stays 0, and friction works.
+TEST(ShapeMotion, SlippingRimKeepsTheEnergyBalance) {
+  const top_sim::Model model = thin_disc();
+  const ContactShape rim{ShapeKind::rim, 0.0, 0.04};
+  Body y = rolling_disc_start(0.6, 40.0);
+  y.v_cm = Vector3d(0.2, 0.1, 0.0);  // the centre moving: the contact slips
+  const double E0 = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+  double max_balance = 0.0, max_gap = 0.0, min_normal = 1e9, min_slip_speed = 1e9;
+  for (int k = 0; k < 4000; ++k) {  // 0.04 s: it sticks at about 0.045 s (the Simulator's mode switch, not RK4's)
+    rk4_step(model, rim, ContactMode::slipping, y, 1e-5);
+    const top_sim::ShapeMotion m = top_sim::shape_motion(model, rim, ContactMode::slipping, y.v_cm, y.f_hat, y.w);
+    min_normal = std::min(min_normal, m.normal_force);
+    min_slip_speed = std::min(min_slip_speed, m.v_t.norm());
+    const double E = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+    max_balance = std::max(max_balance, std::abs(E + y.w_diss - E0) / E0);
+    max_gap = std::max(max_gap, std::abs(y.r_cm.z() + top_sim::shape_height(rim, y.f_hat.z())));
+  }
+  EXPECT_GT(min_normal, 0.0);              // it stayed in contact
+  EXPECT_GT(min_slip_speed, 0.03);         // and slipping (v_t from 0.22 m/s)
+  EXPECT_GT(y.w_diss, 1e-3 * E0);          // friction worked
+  EXPECT_LT(max_balance, 1e-10);
+  EXPECT_LT(max_gap, 1e-10);
+}
+
+}  // namespace
