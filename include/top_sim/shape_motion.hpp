@@ -5,6 +5,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
 
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
@@ -30,6 +31,24 @@ struct ShapeMotion {
 // f_hat of unit length; a rim not lying flat (contact_shapes.hpp).
 ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
                          const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
+
+// Two shapes touching at once (a fallen top on its tip and crown), each slipping or rolling (stuck): the unknowns
+// are both contact forces, and d/dt v_k = sum_j K_kj F_j - b_k with K_kj = (1/m) 1 - [r_k]x I^-1 [r_j]x. Both
+// stuck leaves the force along the line between the contacts undetermined (the body's one free rotation is about
+// that line): the least-norm forces are taken, the ones without a pair of friction forces pulling against each other.
+struct TwoShapeMotion {
+  std::array<Eigen::Vector3d, 2> force{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<Eigen::Vector3d, 2> v_t{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
+  std::array<double, 2> normal_force{0.0, 0.0}, mu{0.0, 0.0}, slip{0.0, 0.0};
+  Eigen::Vector3d a_cm = Eigen::Vector3d::Zero();
+  Eigen::Vector3d omega_dot = Eigen::Vector3d::Zero();
+  double dissipation = 0.0;
+  double painleve = ModeMargins::kNone;  // both slipping: > 0 iff A_kj = n . K_kj d_j is a P-matrix (unique N_k):
+                                         // m min(A_11, A_22, det A / tr A)
+};
+TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
+                                const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
+                                const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
 
 // The body's energy at centre of mass r_cm in the plane frame (section 4's E, no rotor).
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,

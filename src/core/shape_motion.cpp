@@ -3,6 +3,8 @@
 #include "top_sim/shape_motion.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/QR>
+#include <algorithm>
 #include <Eigen/Geometry>
 #include <cmath>
 
@@ -18,16 +20,6 @@ Eigen::Vector3d inverse_inertia(const Top& top, const Eigen::Vector3d& f_hat, co
   return inv_d * v + (inv_f - inv_d) * f_hat.dot(v) * f_hat;
 }
 
-// K = (1/m) 1 - [r]x I^-1 [r]x, column by column: d/dt v_c per newton at the contact.
-Eigen::Matrix3d response_matrix(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& r) {
-  Eigen::Matrix3d K;
-  for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(j);
-    K.col(j) = unit / top.mass - r.cross(inverse_inertia(top, f_hat, r.cross(unit)));
-  }
-  return K;
-}
-
 // The slip of section 3 and the friction direction: u is the contact point's own velocity v_cm + r_k', and the
 // rolling speed the part of it the rotation carries, |r_k' - w x r_k| (R |w x n| for a sphere).
 void slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& w, const ShapePoint& p,
@@ -40,6 +32,27 @@ void slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const Ei
   t_hat = out.v_t / std::sqrt(vt * vt + v_eps * v_eps);
 }
 
+// d/dt v_c's bias b = -(g + r x I^-1 G + w x r') at one contact, and I^-1 G.
+Eigen::Vector3d inverse_inertia_gyro(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
+  const Eigen::Vector3d L = top.inertia_transverse * w + (top.inertia_axial - top.inertia_transverse) * w.dot(f_hat) * f_hat;
+  return inverse_inertia(top, f_hat, w.cross(L));
+}
+Eigen::Vector3d response_bias(const Model& model, const ShapePoint& p, const Eigen::Vector3d& w,
+                              const Eigen::Vector3d& Ii_G) {
+  return -(model.plane.g_plane + p.r.cross(Ii_G) + w.cross(p.r_rate));
+}
+
+// K_kj = (1/m) 1 - [r_k]x I^-1 [r_j]x: d/dt v_k per newton at contact j.
+Eigen::Matrix3d cross_response(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& r_k,
+                               const Eigen::Vector3d& r_j) {
+  Eigen::Matrix3d K;
+  for (int j = 0; j < 3; ++j) {
+    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(j);
+    K.col(j) = unit / top.mass - r_k.cross(inverse_inertia(top, f_hat, r_j.cross(unit)));
+  }
+  return K;
+}
+
 }  // namespace
 
 ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
@@ -47,28 +60,82 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   const Top& top = model.top;
   const Eigen::Vector3d& g = model.plane.g_plane;
   const ShapePoint p = shape_point(shape, f_hat, w);
-  const Eigen::Vector3d L = top.inertia_transverse * w + (top.inertia_axial - top.inertia_transverse) * w.dot(f_hat) * f_hat;
-  const Eigen::Vector3d Ii_G = inverse_inertia(top, f_hat, w.cross(L));
-  // d/dt v_c = K F - b: b = -(g + r x I^-1 G + w x r')
-  const Eigen::Vector3d b = -(g + p.r.cross(Ii_G) + w.cross(p.r_rate));
+  const Eigen::Vector3d Ii_G = inverse_inertia_gyro(top, f_hat, w);
+  const Eigen::Vector3d b = response_bias(model, p, w, Ii_G);
   Eigen::Vector3d t_hat;
   ShapeMotion out;
   slip_and_friction(model, v_cm, w, p, out, t_hat);
   if (mode == ContactMode::slipping) {
     out.mu = friction_coefficient(model.friction, out.slip);
     const Eigen::Vector3d d = Eigen::Vector3d::UnitZ() - out.mu * t_hat;
-    const double n_Kd = response_matrix(top, f_hat, p.r).row(2).dot(d);
+    const double n_Kd = cross_response(top, f_hat, p.r, p.r).row(2).dot(d);
     out.painleve = top.mass * n_Kd;
     out.normal_force = b.z() / n_Kd;
     out.force = out.normal_force * d;
     out.dissipation = out.mu * out.normal_force * t_hat.dot(out.v_t);
   } else if (mode == ContactMode::rolling) {
-    out.force = response_matrix(top, f_hat, p.r).llt().solve(b);
+    out.force = cross_response(top, f_hat, p.r, p.r).llt().solve(b);
     out.normal_force = out.force.z();
     out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
   }
   out.a_cm = g + out.force / top.mass;
   out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force)) - Ii_G;
+  return out;
+}
+
+TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
+                                const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
+                                const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
+  const Top& top = model.top;
+  const std::array<ShapePoint, 2> p{shape_point(shapes[0], f_hat, w), shape_point(shapes[1], f_hat, w)};
+  const Eigen::Vector3d Ii_G = inverse_inertia_gyro(top, f_hat, w);
+  Eigen::Matrix<double, 6, 6> K;
+  Eigen::Matrix<double, 6, 1> b;
+  for (int k = 0; k < 2; ++k) {
+    b.segment<3>(3 * k) = response_bias(model, p[k], w, Ii_G);
+    for (int j = 0; j < 2; ++j) K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
+  }
+  // Unknowns: F_k of a stuck contact, N_k of a slipping one (F_k = N_k d_k); rows: all of v_k' = 0 stuck, n . v_k' = 0
+  // slipping. F = B z, rows C: (C K B) z = C b.
+  TwoShapeMotion out;
+  Eigen::Matrix<double, 6, Eigen::Dynamic> B = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, 0);
+  Eigen::Matrix<double, Eigen::Dynamic, 6> C = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(0, 6);
+  for (int k = 0; k < 2; ++k) {
+    ShapeMotion one;
+    Eigen::Vector3d t_hat;
+    slip_and_friction(model, v_cm, w, p[k], one, t_hat);
+    out.v_t[k] = one.v_t;
+    out.slip[k] = one.slip;
+    const bool stuck = modes[k] == ContactMode::rolling;
+    const Eigen::Index columns = B.cols(), rows = C.rows(), width = stuck ? 3 : 1;
+    B.conservativeResize(Eigen::NoChange, columns + width);
+    C.conservativeResize(rows + width, Eigen::NoChange);
+    B.rightCols(width).setZero();
+    C.bottomRows(width).setZero();
+    if (stuck) {
+      B.block<3, 3>(3 * k, columns).setIdentity();
+      C.block<3, 3>(rows, 3 * k).setIdentity();
+    } else {
+      out.mu[k] = friction_coefficient(model.friction, one.slip);
+      B.block<3, 1>(3 * k, columns) = Eigen::Vector3d::UnitZ() - out.mu[k] * t_hat;
+      C(rows, 3 * k + 2) = 1.0;
+    }
+  }
+  const Eigen::MatrixXd A = C * K * B;
+  const Eigen::VectorXd z = A.completeOrthogonalDecomposition().solve(C * b);
+  const Eigen::Matrix<double, 6, 1> F = B * z;
+  for (int k = 0; k < 2; ++k) {
+    out.force[k] = F.segment<3>(3 * k);
+    out.normal_force[k] = out.force[k].z();
+    if (modes[k] == ContactMode::slipping)
+      out.dissipation -= out.force[k].dot(out.v_t[k]);  // mu N t_hat . v_t
+    else if (out.normal_force[k] > 0.0)
+      out.mu[k] = std::hypot(out.force[k].x(), out.force[k].y()) / out.normal_force[k];
+  }
+  if (A.rows() == 2 && A.cols() == 2)
+    out.painleve = top.mass * std::min({A(0, 0), A(1, 1), A.determinant() / (A(0, 0) + A(1, 1))});
+  out.a_cm = model.plane.g_plane + (out.force[0] + out.force[1]) / top.mass;
+  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) - Ii_G;
   return out;
 }
 

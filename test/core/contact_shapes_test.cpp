@@ -231,3 +231,110 @@ TEST(ShapeMotion, SlippingRimKeepsTheEnergyBalance) {
 }
 
 }  // namespace
+
+namespace {
+
+// The aluminium top of the default scene with a crown rim (radius 20 mm, 4 mm above the centre of mass), lying on
+// its tip and crown: the tilt where both lowest points are level.
+struct FallenTop {
+  std::array<ContactShape, 2> shapes{ContactShape{ShapeKind::sphere, -0.010, 1.5e-3}, ContactShape{ShapeKind::rim, 0.004, 0.02}};
+  double tilt = 0.0;
+  Vector3d f_hat;
+};
+FallenTop fallen_top() {
+  FallenTop top;
+  auto difference = [&](double theta) {
+    return top_sim::shape_height(top.shapes[1], std::cos(theta)) - top_sim::shape_height(top.shapes[0], std::cos(theta));
+  };
+  double lo = 0.0, hi = M_PI / 2;
+  for (int i = 0; i < 200; ++i) (difference(0.5 * (lo + hi)) > 0 ? lo : hi) = 0.5 * (lo + hi);
+  top.tilt = 0.5 * (lo + hi);
+  top.f_hat = tilted_axis(top.tilt, 0.0);
+  return top;
+}
+
+top_sim::Model aluminium_top(double inclination) {
+  top_sim::Model model;  // m 0.025 kg, I_f 5e-6, I_d 3e-6 kg m^2
+  model.plane = top_sim::make_plane(inclination, 9.81);
+  model.friction.kind = top_sim::FrictionLawKind::coulomb;
+  model.friction.mu = 0.3;
+  return model;
+}
+
+// At rest on tip and crown on a level plane, both stuck: the normal forces of the lever rule about the centre of
+// mass, N_1 x_1 + N_2 x_2 = 0 and N_1 + N_2 = m g (x_k the contacts' horizontal offsets), and no friction.
+TEST(TwoShapeMotion, FallenTopAtRestCarriesItsWeightByTheLeverRule) {
+  const top_sim::Model model = aluminium_top(0.0);
+  const FallenTop top = fallen_top();
+  const top_sim::TwoShapeMotion m = top_sim::two_shape_motion(model, top.shapes, {ContactMode::rolling, ContactMode::rolling},
+                                                              Vector3d::Zero(), top.f_hat, Vector3d::Zero());
+  const double x1 = top_sim::shape_point(top.shapes[0], top.f_hat, Vector3d::Zero()).r.x();
+  const double x2 = top_sim::shape_point(top.shapes[1], top.f_hat, Vector3d::Zero()).r.x();
+  const double mg = model.top.mass * 9.81;
+  ASSERT_LT(x1 * x2, 0.0);  // the centre of mass between the contacts
+  EXPECT_NEAR(m.normal_force[0], mg * x2 / (x2 - x1), 1e-12 * mg);
+  EXPECT_NEAR(m.normal_force[1], -mg * x1 / (x2 - x1), 1e-12 * mg);
+  EXPECT_LT(m.force[0].head<2>().norm() + m.force[1].head<2>().norm(), 1e-12 * mg);
+  EXPECT_LT(m.a_cm.norm(), 1e-12 * 9.81);
+  EXPECT_LT(m.omega_dot.norm(), 1e-9);
+}
+
+// Two contacts: integrate the body's centre-of-mass form in the given modes, return the worst balance and gaps.
+struct TwoContactRun {
+  double max_balance = 0.0, max_gap = 0.0, min_normal = 1e9, dissipated = 0.0;
+};
+TwoContactRun slide_on_two(const top_sim::Model& model, const FallenTop& top, std::array<ContactMode, 2> modes,
+                           Body y, int steps, double h) {
+  struct Rate { Vector3d r, v, f, w; double diss; };
+  auto rate = [&](const Body& b) {
+    const top_sim::TwoShapeMotion m = top_sim::two_shape_motion(model, top.shapes, modes, b.v_cm, b.f_hat.normalized(), b.w);
+    return Rate{b.v_cm, m.a_cm, b.w.cross(b.f_hat), m.omega_dot, m.dissipation};
+  };
+  auto plus = [](const Body& b, const Rate& k, double s) {
+    return Body{b.r_cm + s * k.r, b.v_cm + s * k.v, b.f_hat + s * k.f, b.w + s * k.w, b.w_diss + s * k.diss};
+  };
+  const double E0 = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+  TwoContactRun run;
+  for (int i = 0; i < steps; ++i) {
+    const Rate k1 = rate(y), k2 = rate(plus(y, k1, h / 2)), k3 = rate(plus(y, k2, h / 2)), k4 = rate(plus(y, k3, h));
+    const Rate sum{k1.r + 2 * k2.r + 2 * k3.r + k4.r, k1.v + 2 * k2.v + 2 * k3.v + k4.v,
+                   k1.f + 2 * k2.f + 2 * k3.f + k4.f, k1.w + 2 * k2.w + 2 * k3.w + k4.w,
+                   k1.diss + 2 * k2.diss + 2 * k3.diss + k4.diss};
+    y = plus(y, sum, h / 6);
+    y.f_hat.normalize();
+    const top_sim::TwoShapeMotion m = top_sim::two_shape_motion(model, top.shapes, modes, y.v_cm, y.f_hat, y.w);
+    run.min_normal = std::min({run.min_normal, m.normal_force[0], m.normal_force[1]});
+    const double E = top_sim::shape_body_energy(model, y.r_cm, y.v_cm, y.f_hat, y.w);
+    run.max_balance = std::max(run.max_balance, std::abs(E + y.w_diss - E0) / E0);
+    for (const ContactShape& shape : top.shapes)
+      run.max_gap = std::max(run.max_gap, std::abs(y.r_cm.z() + top_sim::shape_height(shape, y.f_hat.z())));
+  }
+  run.dissipated = y.w_diss / E0;
+  return run;
+}
+
+// The fallen top sliding and turning about the vertical on tip and crown (both slipping), and with the tip stuck
+// while the crown slips: E + W_diss holds, both gaps stay 0, both normal forces stay positive.
+TEST(TwoShapeMotion, SlidingOnTipAndCrownKeepsTheBalanceAndBothGaps) {
+  const top_sim::Model model = aluminium_top(0.0);
+  const FallenTop top = fallen_top();
+  const double z_cm = -top_sim::shape_height(top.shapes[0], top.f_hat.z());
+  // w along n and v_cm in-plane keep both contacts' normal velocities 0.
+  const Body start{Vector3d(0.0, 0.0, z_cm), Vector3d(0.15, 0.05, 0.0), top.f_hat, Vector3d(0.0, 0.0, 6.0)};
+  const TwoContactRun both = slide_on_two(model, top, {ContactMode::slipping, ContactMode::slipping}, start, 2000, 1e-5);
+  EXPECT_GT(both.min_normal, 0.0);
+  EXPECT_GT(both.dissipated, 1e-3);
+  EXPECT_LT(both.max_balance, 1e-10);
+  EXPECT_LT(both.max_gap, 1e-11);
+  // The tip stuck at rest needs a start whose tip does not move: turning about the vertical through it.
+  const Vector3d r_tip = top_sim::shape_point(top.shapes[0], top.f_hat, Vector3d::Zero()).r;
+  const Vector3d w(0.0, 0.0, 6.0);
+  const Body pivoting{Vector3d(0.0, 0.0, z_cm), -w.cross(r_tip), top.f_hat, w};
+  const TwoContactRun mixed = slide_on_two(model, top, {ContactMode::rolling, ContactMode::slipping}, pivoting, 2000, 1e-5);
+  EXPECT_GT(mixed.min_normal, 0.0);
+  EXPECT_GT(mixed.dissipated, 1e-3);
+  EXPECT_LT(mixed.max_balance, 1e-10);
+  EXPECT_LT(mixed.max_gap, 1e-11);
+}
+
+}  // namespace
