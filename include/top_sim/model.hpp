@@ -8,6 +8,7 @@
 #include <cmath>
 #include <optional>
 
+#include "top_sim/contact_shapes.hpp"
 #include "top_sim/finite_contact.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/plane.hpp"
@@ -73,6 +74,9 @@ struct Model {
   FiniteContact finite_contact;          // command: patch_radius, rolling_resistance (physics.md section 12)
   Air air;                               // command: spin_drag, drag
   Material plane_material;               // the plane file's young_modulus, poisson_ratio
+  // top.shapes (physics.md section 13); count 0: the tip sphere of top.tip_radius and com_offset alone. Last: no
+  // right-hand side of a tip sphere reads it.
+  ShapeSet shapes;
 };
 
 // True when the contact is the point of sections 3-4 with no air: the right-hand side then takes the point

@@ -15,6 +15,7 @@
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/command_fields.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/contact_shapes.hpp"
 #include "top_sim/energy.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
@@ -201,18 +202,78 @@ Material read_material(Section& s) {
   return m;
 }
 
-Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin) {
+// One item of top.shapes: {sphere: {offset, radius}} or {rim: {offset, radius}}.
+ContactShape read_shape(const YAML::Node& item, const std::string& file, const std::string& key) {
+  if (!item.IsMap() || item.size() != 1)
+    throw SceneError(file, key, show(item) + " must be a mapping of one key, sphere or rim");
+  const std::string kind = item.begin()->first.IsScalar() ? item.begin()->first.Scalar() : "";
+  if (kind != "sphere" && kind != "rim")
+    throw SceneError(file, join(key, kind.empty() ? show(item.begin()->first) : kind), "unknown shape kind (known: sphere, rim)");
+  Section s(item.begin()->second, file, join(key, kind));
+  for (const char* k : {"offset", "radius"})
+    if (!s.has(k)) throw SceneError(file, join(s.path(), k), "required");
+  ContactShape shape;
+  shape.kind = kind == "sphere" ? ShapeKind::sphere : ShapeKind::rim;
+  shape.offset = s.number("offset", 0.0, finite, "a finite number [m] (the centre's distance from the centre of mass "
+                                                 "along the figure axis)");
+  shape.radius = s.number("radius", 0.0, positive, "> 0 [m]");
+  s.finish();
+  return shape;
+}
+
+// top.shapes (physics.md section 13) replaces tip_radius and com_offset; a first sphere is the tip sphere itself.
+ShapeSet read_shapes(Section& s, const std::string& file, Top& top) {
+  ShapeSet shapes;
+  const std::string key = join(s.path(), "shapes");
+  for (const char* k : {"tip_radius", "com_offset"})
+    if (s.has(k)) throw SceneError(file, join(s.path(), k), "not with " + key + " (the shapes replace tip_radius and com_offset)");
+  const YAML::Node list = s.raw("shapes");
+  if (!list.IsSequence() || list.size() == 0 || list.size() > kMaxShapes)
+    throw SceneError(file, key, (list.IsSequence() ? "a list of " + std::to_string(list.size()) + " shapes" : show(list)) +
+                                    " is out of range; must be a list of 1 to " + std::to_string(kMaxShapes) +
+                                    " shapes, each {sphere: {offset, radius}} or {rim: {offset, radius}}");
+  for (std::size_t i = 0; i < list.size(); ++i)
+    shapes.shape[i] = read_shape(list[i], file, key + "[" + std::to_string(i) + "]");
+  shapes.count = list.size();
+  if (shapes.shape[0].kind == ShapeKind::sphere) {
+    top.tip_radius = shapes.shape[0].radius;
+    top.com_offset = -shapes.shape[0].offset;
+  }
+  return shapes;
+}
+
+// A rim marks the body's widest reach: all its mass lies within rho_max of the axis, so I_f <= m rho_max^2.
+void check_inertia_within_shapes(const Top& top, const ShapeSet& shapes, const std::string& file) {
+  double reach = 0.0;
+  bool rim = false;
+  for (std::size_t k = 0; k < shapes.count; ++k) {
+    reach = std::max(reach, shapes.shape[k].radius);
+    rim = rim || shapes.shape[k].kind == ShapeKind::rim;
+  }
+  if (rim && top.inertia_axial > top.mass * reach * reach)
+    throw SceneError(file, "top.inertia_axial",
+                     fmt(top.inertia_axial) + " is out of range; must be <= mass * rho_max^2 = " +
+                         fmt(top.mass * reach * reach) + " (no body within its shapes' reach of " + fmt(reach) +
+                         " m from the axis has more)");
+}
+
+Top read_top(const YAML::Node& node, const std::string& file, double& rotor_spin, ShapeSet& shapes) {
   Section s(node, file, "top");
   Top top;
   top.mass = s.number("mass", top.mass, positive, "> 0 [kg]");
-  top.tip_radius = s.number("tip_radius", top.tip_radius, non_negative, ">= 0 [m]");
-  top.com_offset = s.number("com_offset", top.com_offset, finite, "a finite number [m] (0: a ball)");
+  if (s.has("shapes")) {
+    shapes = read_shapes(s, file, top);
+  } else {
+    top.tip_radius = s.number("tip_radius", top.tip_radius, non_negative, ">= 0 [m]");
+    top.com_offset = s.number("com_offset", top.com_offset, finite, "a finite number [m] (0: a ball)");
+  }
   top.inertia_axial = s.number("inertia_axial", top.inertia_axial, positive, "> 0 [kg m^2]");
   top.inertia_transverse = s.number("inertia_transverse", top.inertia_transverse, positive, "> 0 [kg m^2]");
   if (top.inertia_axial > 2.0 * top.inertia_transverse)
     throw SceneError(file, "top.inertia_axial",
                      fmt(top.inertia_axial) + " is out of range; must be <= 2 * inertia_transverse = " +
                          fmt(2.0 * top.inertia_transverse) + " for a rigid axisymmetric body");
+  check_inertia_within_shapes(top, shapes, file);
   // pi: the body is only its sphere and nothing else can touch the plane (a tippe top turns over).
   top.max_tilt = s.number("max_tilt", top.max_tilt, [](double v) { return v > 0.0 && v <= M_PI; }, "in (0, pi] [rad]");
   if (s.has("rotor")) {
@@ -494,6 +555,21 @@ static FrictionLaw read_friction_law(Section& s, const std::string& file, double
 
 namespace {
 
+// The start places shapes[0] on the plane (initial.gap above it): no other shape may start below the plane.
+void check_shapes_at_start(const Model& model, const StateVector& y, const std::string& file) {
+  const ShapeSet& shapes = model.shapes;
+  const double c = figure_axis(y).normalized().z();
+  for (std::size_t k = 1; k < shapes.count; ++k) {
+    const double below = shape_height(shapes.shape[0], c) - y[idx::gap] - shape_height(shapes.shape[k], c);
+    if (below > 1e-12)
+      throw SceneError(file, "top.shapes[" + std::to_string(k) + "]",
+                       std::string("the ") + to_string(shapes.shape[k].kind) + " starts " + fmt(below) +
+                           " m below the plane at the initial tilt " + fmt(std::acos(std::clamp(c, -1.0, 1.0))) +
+                           " rad (shapes[0] is placed on the plane); start less tilted, or list first the shape that "
+                           "touches");
+  }
+}
+
 // A state the simulation can start from: finite energy, the figure axis within max_tilt of the plane normal (a top
 // beyond it has fallen: bad input, exit 2, not a fault at t = 0).
 void check_initial_state(const Scene& scene, const std::string& file) {
@@ -508,6 +584,16 @@ void check_initial_state(const Scene& scene, const std::string& file) {
     throw SceneError(file, scene.initial.start == StartKind::tilted ? "initial.tilt" : "initial.start",
                      "the figure axis starts " + fmt(tilt) + " rad from the plane normal; must be < top.max_tilt = " +
                          fmt(max_tilt) + " rad (a top tilted further has fallen over)");
+  check_shapes_at_start(scene.model, y, file);
+}
+
+// The Simulator steps one sphere: the tip. The core has several shapes' geometry and motion (shape_motion.hpp), but
+// no mode, event or output of theirs yet (docs/design/contact_shapes.md), so such a body is refused, not run wrong.
+void check_simulated_shapes(const ShapeSet& shapes, const std::string& file) {
+  if (shapes.count <= 1 && shapes.shape[0].kind == ShapeKind::sphere) return;
+  throw SceneError(file, "top.shapes",
+                   shapes.count > 1 ? std::to_string(shapes.count) + " shapes are not simulated yet; give one sphere"
+                                    : std::string("a rim alone is not simulated yet; give one sphere"));
 }
 
 }  // namespace
@@ -525,7 +611,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   if (!s.has("top")) throw SceneError(file, "top", "required (a mapping, or the name of a file in config/tops/)");
   std::string top_source;
   const YAML::Node top_node = resolve_named(s.raw("top"), file, "top", config_dir, "tops", top_source);
-  scene.model.top = read_top(top_node, top_source, scene.initial.rotor_spin);
+  scene.model.top = read_top(top_node, top_source, scene.initial.rotor_spin, scene.model.shapes);
 
   scene.model.plane = read_plane(s, file);
 
@@ -554,6 +640,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   scene.events = read_events(s, file, scene.model);
   s.finish();
   check_initial_state(scene, file);
+  check_simulated_shapes(scene.model.shapes, file);
   return scene;
 }
 

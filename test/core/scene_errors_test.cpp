@@ -302,3 +302,47 @@ TEST(ScenePath, AnUnknownNameListsEveryShippedScene) {
 }
 
 }  // namespace
+
+// top.shapes (physics.md section 13): each bad shape named by its index and key, with the value and the range.
+TEST(SceneErrors, ContactShapes) {
+  const std::string inertia = "inertia_axial: 5.0e-6, inertia_transverse: 3.0e-6, ";
+  expect_error("top: {shapes: []}\n", "top.shapes", "a list of 0 shapes is out of range", "1 to 4 shapes");
+  expect_error("top: {shapes: 3}\n", "top.shapes", "'3' is out of range", "{sphere: {offset, radius}}");
+  expect_error("top: {shapes: [{box: {offset: 0, radius: 1}}]}\n", "top.shapes[0].box", "unknown shape kind",
+               "sphere, rim");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1e-3}, rim: {offset: 0, radius: 0.02}}]}\n",
+               "top.shapes[0]", "a mapping", "one key, sphere or rim");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 0}}]}\n", "top.shapes[0].sphere.radius", "0", "> 0");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1e-3}}, {rim: {offset: .nan, radius: 0.02}}]}\n",
+               "top.shapes[1].rim.offset", "nan", "a finite number");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1e-3}}, {rim: {offset: 0.004}}]}\n",
+               "top.shapes[1].rim.radius", "required", "required");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1e-3, colour: red}}]}\n", "top.shapes[0].sphere.colour",
+               "unknown key", "offset, radius");
+  expect_error("top: {tip_radius: 1e-3, shapes: [{sphere: {offset: -0.01, radius: 1e-3}}]}\n", "top.tip_radius",
+               "not with top.shapes", "replace tip_radius and com_offset");
+  // A rim 5 mm from the axis bounds I_f by m rho^2 = 6.25e-7 kg m^2.
+  expect_error("top: {mass: 0.025, " + inertia + "shapes: [{sphere: {offset: -0.01, radius: 1e-3}}, "
+               "{rim: {offset: 0.004, radius: 0.005}}]}\n", "top.inertia_axial", "5e-06 is out of range",
+               "mass * rho_max^2 = 6.25e-07");
+  // At a 1.2 rad start the crown (20 mm, 4 mm above the centre of mass) is below the plane when the tip touches.
+  expect_error("top: {mass: 0.025, " + inertia + "max_tilt: 3, shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}, "
+               "{rim: {offset: 0.004, radius: 0.02}}]}\nplane: {inclination: 0}\ninitial: {tilt: 1.2}\n", "top.shapes[1]",
+               "the rim starts", "below the plane at the initial tilt 1.2 rad");
+}
+
+// One sphere in top.shapes is the tip sphere: the same scene as tip_radius and com_offset; a rim or several shapes
+// are refused until the Simulator steps them.
+TEST(SceneShapes, OneSphereIsTheTipSphereAndMoreIsRefusedForNow) {
+  const top_sim::Scene listed = scene_from("top: {shapes: [{sphere: {offset: -0.012, radius: 2.0e-3}}]}\n");
+  const top_sim::Scene keyed = scene_from("top: {tip_radius: 2.0e-3, com_offset: 0.012}\n");
+  EXPECT_EQ(listed.model.top.tip_radius, keyed.model.top.tip_radius);
+  EXPECT_EQ(listed.model.top.com_offset, keyed.model.top.com_offset);
+  EXPECT_EQ(listed.model.shapes.count, 1u);
+  EXPECT_EQ(keyed.model.shapes.count, 0u);
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}, {rim: {offset: 0.004, radius: 0.02}}]}\n",
+               "top.shapes", "2 shapes are not simulated yet", "give one sphere");
+  expect_error("top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, "
+               "shapes: [{rim: {offset: 0, radius: 0.04}}]}\n", "top.shapes", "a rim alone is not simulated yet",
+               "give one sphere");
+}

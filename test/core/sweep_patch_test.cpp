@@ -63,12 +63,12 @@ TEST(SweepPatchRadius, ItemsAreNumbersOrHertz) {
 }
 
 TEST(SweepPatchRadius, BadValuesNameTheFlagValueAndRange) {
-  for (const std::string& bad : {"-1e-3", "nan", "inf", "hertzz", "0,hertzz", "hertz,-1", "hertz,", ""}) {
+  for (const char* bad : {"-1e-3", "nan", "inf", "hertzz", "0,hertzz", "hertz,-1", "hertz,", ""}) {
     const std::string m = refusal({"--patch-radius", bad});
-    EXPECT_NE(m.find("--patch-radius = '" + bad + "'"), std::string::npos) << bad << ": " << m;
+    EXPECT_NE(m.find(std::string("--patch-radius = '") + bad + "'"), std::string::npos) << bad << ": " << m;
   }
   EXPECT_NE(refusal({"--patch-radius", "-1"}).find(">= 0 [m], or hertz"), std::string::npos);
-  for (const std::string& bad : {"hertzz", "nan", "0,nan", "0:nan:3", "-1:0:3"})
+  for (const char* bad : {"hertzz", "nan", "0,nan", "0:nan:3", "-1:0:3"})
     EXPECT_NE(refusal({"--patch-radius", bad}).find(">= 0 [m], or hertz"), std::string::npos) << bad;
   EXPECT_NE(refusal({"--patch-radius"}).find("needs a value"), std::string::npos);
 }
