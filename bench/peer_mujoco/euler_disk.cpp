@@ -42,10 +42,14 @@ const Friction kLow{"low", 0.3, 1e-5, 1e-6};
 constexpr double kG = 9.81;
 constexpr double kBeta0 = 0.5;         // start angle from the plane [rad]
 constexpr double kSteadyT = 1.0;       // (a): steady rolling held over [s]
-constexpr double kRestCap = 200.0;     // (b): the run stops here if not at rest [s]
+constexpr double kRestCap = 100.0;     // (b): the run stops here if not at rest [s]
 constexpr double kRestKinetic = 1e-6;  // rest: kinetic energy below this fraction of its start
 constexpr double kFitHigh = 0.45;      // (c): the fit's window ends here [rad] (after the start's transient)
-constexpr double kSample = 1e-3;       // sample spacing of beta and the contact's azimuth [s]
+constexpr double kSample = 1e-3;
+// The ctest's steady rolling: low friction, the stiffest contact MuJoCo allows (solref 2 dt), over kCheckT; beta
+// within kCheckBeta of beta0 (4 %), the mean circling rate within kCheckOmega of Omega (MuJoCo's soft contact
+// costs a few per cent of it: docs/performance/mujoco_shapes.md).
+constexpr double kCheckDt = 1e-4, kCheckT = 0.2, kCheckBeta = 0.02, kCheckOmega = 0.05;       // sample spacing of beta and the contact's azimuth [s]
 
 // tc: the contact's solref time constant (MuJoCo's default 0.02 s; 2 dt is the stiffest MuJoCo allows).
 std::string disk_mjcf(const Disk& k, const Friction& f, double dt, double tc = 0.02) {
@@ -203,10 +207,11 @@ std::vector<double> log_to(const DiskRun& r, const std::vector<std::size_t>& idx
   return x;
 }
 
-// Where the disc falls flat: the first sample whose beta halves within the next 20 samples (20 ms) [rad].
+// Where the disc starts to fall flat: the first sample whose beta falls by 10 % within the next 20 samples (20 ms;
+// the rolling disc loses about 1 % in that time) [rad].
 double collapse_beta(const DiskRun& r) {
   for (std::size_t i = 0; i + 20 < r.beta.size(); ++i)
-    if (r.beta[i + 20] < 0.5 * r.beta[i]) return r.beta[i];
+    if (r.beta[i + 20] < 0.9 * r.beta[i]) return r.beta[i];
   return NAN;
 }
 
@@ -263,11 +268,12 @@ void print_rest(const std::vector<DiskRun>& runs, const std::vector<const char*>
                 const std::vector<std::vector<double>>& cpu) {
   std::printf("\n**(b) To rest from beta = %g rad** (rest: kinetic energy below %g of its start; flat: beta below 1 "
               "degree; cap %g s) and **(c) late-time exponents** (beta = C (t0 - t)^p over beta from 1.05 times the angle "
-              "where the disc falls flat (beta halves within 20 ms) up to %g rad, t0 fitted; the circling rate's "
+              "where the disc falls flat (beta falls by 10 %% within 20 ms) up to %g rad, t0 fitted; the circling rate's "
               "exponent q at that t0; Moffatt: p = 1/3, q = -1/6):\n\n"
-              "| friction | dt [s] | at rest [s] | flat [s] | falls flat from beta [rad] | max circling rate [rad/s] | "
+              "| friction | dt [s] | at rest [s] | flat [s] | falls flat from beta [rad] | beta at the end [rad] | max circling "
+              "rate [rad/s] | "
               "CPU per simulated s [s] (median, min-max) | p | q | t0 [s] | fit rms of log beta | samples |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const DiskRun& r = runs[k];
     double w_max = 0;
@@ -275,8 +281,8 @@ void print_rest(const std::vector<DiskRun>& runs, const std::vector<const char*>
     const double fall = collapse_beta(r);
     const PowerFit f = late_fit(r, 1.05 * fall, kFitHigh);
     const auto [lo, hi] = std::minmax_element(cpu[k].begin(), cpu[k].end());
-    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g | %zu |\n",
-                names[k], r.dt, r.t_rest, r.t_flat, fall, w_max, median(cpu[k]), *lo, *hi, f.p, f.p_Omega, f.t0, f.rms,
+    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g | %zu |\n",
+                names[k], r.dt, r.t_rest, r.t_flat, fall, r.beta.back(), w_max, median(cpu[k]), *lo, *hi, f.p, f.p_Omega, f.t0, f.rms,
                 f.n);
   }
 }
@@ -351,6 +357,15 @@ int disk_check() {
   for (const Rolling* s : {&thin, &thick})
     ok &= expect(s->omega.cross(s->r).norm() < 1e-12 * s->omega.norm() * s->r.norm() && std::abs(s->com.z() + s->r.z()) < 1e-15,
                  "start: omega parallel to the centre-to-contact vector, the contact on the floor");
+  for (const Disk* k : {&kCommercial, &kThin}) {
+    MjInstance mj(disk_mjcf(*k, kLow, kCheckDt, 2 * kCheckDt));
+    const Steady s = steady_summary(disk_run(mj, *k, kCheckDt, kCheckT, false), kCheckT);
+    ok &= expect(s.beta_drift < kCheckBeta && std::abs(s.Omega_ratio - 1) < kCheckOmega,
+                 std::string(k == &kThin ? "thin" : "commercial") + ", dt " + fmt("%g", kCheckDt) + ", stiffest contact: " +
+                     "over " + fmt("%g", kCheckT) + " s max abs(beta - beta0) " + fmt("%.3g", s.beta_drift) +
+                     " rad (< " + fmt("%g", kCheckBeta) + "), circling rate " + fmt("%.4f", s.Omega_ratio) +
+                     " of the steady rolling's (1 within " + fmt("%g", kCheckOmega) + ")");
+  }
   for (const Disk* k : {&kCommercial, &kThin}) {
     const StartView v = start_view(*k, kLow, 1e-4);
     ok &= expect(v.contact_speed < 1e-12 && v.centre_speed < 1e-12,
