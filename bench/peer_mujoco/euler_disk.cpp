@@ -187,6 +187,7 @@ Steady steady_summary(const DiskRun& r, double T) {
 // after the window's end for the least squares of log y against log(t0 - t).
 struct PowerFit {
   double p = NAN, t0 = NAN, p_Omega = NAN, rms = NAN;
+  double p_onset = NAN, p_Omega_onset = NAN;  // the same with t0 the fall's onset (a singularity where it ends)
   std::size_t n = 0;
 };
 
@@ -209,13 +210,14 @@ std::vector<double> log_to(const DiskRun& r, const std::vector<std::size_t>& idx
 
 // Where the disc starts to fall flat: the first sample whose beta falls by 10 % within the next 20 samples (20 ms;
 // the rolling disc loses about 1 % in that time) [rad].
-double collapse_beta(const DiskRun& r) {
+// Its sample index; the number of samples if it never does.
+std::size_t collapse_index(const DiskRun& r) {
   for (std::size_t i = 0; i + 20 < r.beta.size(); ++i)
-    if (r.beta[i + 20] < 0.9 * r.beta[i]) return r.beta[i];
-  return NAN;
+    if (r.beta[i + 20] < 0.9 * r.beta[i]) return i;
+  return r.beta.size();
 }
 
-PowerFit late_fit(const DiskRun& r, double lo, double hi) {
+PowerFit late_fit(const DiskRun& r, double t_onset, double lo, double hi) {
   std::vector<std::size_t> idx;
   for (std::size_t i = 10; i + 10 < r.t.size() && r.beta[i] >= lo; ++i)
     if (r.beta[i] <= hi) idx.push_back(i);
@@ -233,6 +235,8 @@ PowerFit late_fit(const DiskRun& r, double lo, double hi) {
     if (rms < best) best = rms, f.p = p, f.t0 = t0, f.rms = rms;
   }
   f.p_Omega = slope(log_to(r, idx, f.t0), lw, nullptr);
+  f.p_onset = slope(log_to(r, idx, t_onset), lb, nullptr);
+  f.p_Omega_onset = slope(log_to(r, idx, t_onset), lw, nullptr);
   return f;
 }
 
@@ -269,21 +273,22 @@ void print_rest(const std::vector<DiskRun>& runs, const std::vector<const char*>
   std::printf("\n**(b) To rest from beta = %g rad** (rest: kinetic energy below %g of its start; flat: beta below 1 "
               "degree; cap %g s) and **(c) late-time exponents** (beta = C (t0 - t)^p over beta from 1.05 times the angle "
               "where the disc falls flat (beta falls by 10 %% within 20 ms) up to %g rad, t0 fitted; the circling rate's "
-              "exponent q at that t0; Moffatt: p = 1/3, q = -1/6):\n\n"
+              "exponent q at that t0; p', q' with t0 the fall's onset instead; Moffatt: p = 1/3, q = -1/6):\n\n"
               "| friction | dt [s] | at rest [s] | flat [s] | falls flat from beta [rad] | beta at the end [rad] | max circling "
               "rate [rad/s] | "
-              "CPU per simulated s [s] (median, min-max) | p | q | t0 [s] | fit rms of log beta | samples |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
+              "CPU per simulated s [s] (median, min-max) | p | q | t0 [s] | fit rms of log beta | p' | q' | samples |\n"
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const DiskRun& r = runs[k];
     double w_max = 0;
     for (std::size_t i = 10; i + 10 < r.t.size(); ++i) w_max = std::max(w_max, std::abs(circling(r, i - 10, i + 10)));
-    const double fall = collapse_beta(r);
-    const PowerFit f = late_fit(r, 1.05 * fall, kFitHigh);
+    const std::size_t onset = collapse_index(r);
+    const double fall = onset < r.t.size() ? r.beta[onset] : NAN;
+    const PowerFit f = onset < r.t.size() ? late_fit(r, r.t[onset], 1.05 * fall, kFitHigh) : PowerFit{};
     const auto [lo, hi] = std::minmax_element(cpu[k].begin(), cpu[k].end());
-    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g | %zu |\n",
-                names[k], r.dt, r.t_rest, r.t_flat, fall, r.beta.back(), w_max, median(cpu[k]), *lo, *hi, f.p, f.p_Omega, f.t0, f.rms,
-                f.n);
+    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g | %.3f | %.3f "
+                "| %zu |\n", names[k], r.dt, r.t_rest, r.t_flat, fall, r.beta.back(), w_max, median(cpu[k]), *lo, *hi,
+                f.p, f.p_Omega, f.t0, f.rms, f.p_onset, f.p_Omega_onset, f.n);
   }
 }
 
