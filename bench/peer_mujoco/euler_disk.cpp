@@ -134,6 +134,7 @@ struct DiskRun {
   double dt = 0.0, depth = 0.0, Omega0 = 0.0, cpu = NAN;
   std::vector<double> t, beta, phi, speed;  // every kSample: [s], [rad], unwrapped [rad], centre speed [m/s]
   double t_rest = NAN, t_flat = NAN;  // kinetic energy below kRestKinetic of its start; beta below 1 degree [s]
+  double energy0 = NAN, energy_end = NAN;  // kinetic + m g z of the centre [J]
 };
 
 DiskRun disk_run(MjInstance& mj, const Disk& k, double dt, double T, bool to_rest) {
@@ -145,6 +146,7 @@ DiskRun disk_run(MjInstance& mj, const Disk& k, double dt, double T, bool to_res
   r.depth = carrying_depth(mj, k);
   set_state(mj, s, r.depth);
   const double ke0 = kinetic_energy(mj.m, mj.d);
+  r.energy0 = ke0 + mj.m->body_mass[1] * kG * mj.d->qpos[2];
   const long steps = std::lround(T / dt), every = std::max(1L, std::lround(kSample / dt));
   double phi = contact_azimuth(mj.d);
   r.t = {0.0}, r.beta = {disc_beta(mj.d)}, r.phi = {phi}, r.speed = {0.0};
@@ -161,6 +163,7 @@ DiskRun disk_run(MjInstance& mj, const Disk& k, double dt, double T, bool to_res
     if (to_rest && !std::isnan(r.t_rest) && !std::isnan(r.t_flat)) break;
   }
   r.cpu = (thread_cpu() - c0) / r.t.back();  // with the light probes above: every kSample, not every step
+  r.energy_end = kinetic_energy(mj.m, mj.d) + mj.m->body_mass[1] * kG * mj.d->qpos[2];
   return r;
 }
 
@@ -274,10 +277,10 @@ void print_rest(const std::vector<DiskRun>& runs, const std::vector<const char*>
               "degree; cap %g s) and **(c) late-time exponents** (beta = C (t0 - t)^p over beta from 1.05 times the angle "
               "where the disc falls flat (beta falls by 10 %% within 20 ms) up to %g rad, t0 fitted; the circling rate's "
               "exponent q at that t0; p', q' with t0 the fall's onset instead; Moffatt: p = 1/3, q = -1/6):\n\n"
-              "| friction | dt [s] | at rest [s] | flat [s] | falls flat from beta [rad] | beta at the end [rad] | max circling "
-              "rate [rad/s] | "
+              "| friction | dt [s] | at rest [s] | flat [s] | falls flat from beta [rad] | beta at the end [rad] | energy at "
+              "the end / start | centre speed at the end [m/s] | max circling rate [rad/s] | "
               "CPU per simulated s [s] (median, min-max) | p | q | t0 [s] | fit rms of log beta | p' | q' | samples |\n"
-              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
+              "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n", kBeta0, kRestKinetic, kRestCap, kFitHigh);
   for (std::size_t k = 0; k < runs.size(); ++k) {
     const DiskRun& r = runs[k];
     double w_max = 0;
@@ -286,8 +289,9 @@ void print_rest(const std::vector<DiskRun>& runs, const std::vector<const char*>
     const double fall = onset < r.t.size() ? r.beta[onset] : NAN;
     const PowerFit f = onset < r.t.size() ? late_fit(r, r.t[onset], 1.05 * fall, kFitHigh) : PowerFit{};
     const auto [lo, hi] = std::minmax_element(cpu[k].begin(), cpu[k].end());
-    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g | %.3f | %.3f "
-                "| %zu |\n", names[k], r.dt, r.t_rest, r.t_flat, fall, r.beta.back(), w_max, median(cpu[k]), *lo, *hi,
+    std::printf("| %s | %g | %.3f | %.3f | %.4g | %.4g | %.3f | %.3g | %.4g | %.3g (%.3g-%.3g) | %.3f | %.3f | %.4f | %.2g "
+                "| %.3f | %.3f | %zu |\n", names[k], r.dt, r.t_rest, r.t_flat, fall, r.beta.back(),
+                r.energy_end / r.energy0, r.speed.back(), w_max, median(cpu[k]), *lo, *hi,
                 f.p, f.p_Omega, f.t0, f.rms, f.p_onset, f.p_Omega_onset, f.n);
   }
 }
