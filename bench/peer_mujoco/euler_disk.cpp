@@ -368,6 +368,10 @@ int disk_check() {
                  "start: omega parallel to the centre-to-contact vector, the contact on the floor");
   for (const Disk* k : {&kCommercial, &kThin}) {
     MjInstance mj(disk_mjcf(*k, kLow, kCheckDt, 2 * kCheckDt));
+    const double* I = mj.m->body_inertia + 3, *iq = mj.m->body_iquat + 4;
+    const double I1 = k->m * (k->a * k->a / 4 + k->h * k->h / 12), I3 = k->m * k->a * k->a / 2;
+    ok &= expect(iq[0] == 1 && std::abs(I[0] / I1 - 1) < 1e-12 && I[1] == I[0] && std::abs(I[2] / I3 - 1) < 1e-12,
+                 "MuJoCo's cylinder has the derivation's I1 = m (a^2/4 + h^2/12), I3 = m a^2/2 on the body axes");
     const Steady s = steady_summary(disk_run(mj, *k, kCheckDt, kCheckT, false), kCheckT);
     ok &= expect(s.beta_drift < kCheckBeta && std::abs(s.Omega_ratio - 1) < kCheckOmega,
                  std::string(k == &kThin ? "thin" : "commercial") + ", dt " + fmt("%g", kCheckDt) + ", stiffest contact: " +
