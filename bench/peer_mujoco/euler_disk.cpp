@@ -45,11 +45,11 @@ constexpr double kSteadyT = 1.0;       // (a): steady rolling held over [s]
 constexpr double kRestCap = 100.0;     // (b): the run stops here if not at rest [s]
 constexpr double kRestKinetic = 1e-6;  // rest: kinetic energy below this fraction of its start
 constexpr double kFitHigh = 0.45;      // (c): the fit's window ends here [rad] (after the start's transient)
-constexpr double kSample = 1e-3;
+constexpr double kSample = 1e-3;       // sample spacing of beta and the contact's azimuth [s]
 // The ctest's steady rolling: low friction, the stiffest contact MuJoCo allows (solref 2 dt), over kCheckT; beta
 // within kCheckBeta of beta0 (4 %), the mean circling rate within kCheckOmega of Omega (MuJoCo's soft contact
 // costs a few per cent of it: docs/performance/mujoco_shapes.md).
-constexpr double kCheckDt = 1e-4, kCheckT = 0.2, kCheckBeta = 0.02, kCheckOmega = 0.05;       // sample spacing of beta and the contact's azimuth [s]
+constexpr double kCheckDt = 1e-4, kCheckT = 0.2, kCheckBeta = 0.02, kCheckOmega = 0.05;
 
 // tc: the contact's solref time constant (MuJoCo's default 0.02 s; 2 dt is the stiffest MuJoCo allows).
 std::string disk_mjcf(const Disk& k, const Friction& f, double dt, double tc = 0.02) {
