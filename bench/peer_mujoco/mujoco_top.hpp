@@ -16,6 +16,12 @@ namespace peer {
 // An MJCF text compiled through MuJoCo's in-memory file system (throws with MuJoCo's message).
 mjModel_* compile(const std::string& xml);
 
+// A number as MJCF text, all 17 digits (the model is the one the code describes, to the bit).
+std::string num(double v);
+// This thread's CPU time [s] (the benches run one thread: other agents' load does not count).
+double thread_cpu();
+double median(std::vector<double> v);
+
 // The MJCF of `scene`'s top and plane (angles in radians: <compiler angle="radian"/>).
 std::string mjcf(const top_sim::Scene& scene, double dt);
 

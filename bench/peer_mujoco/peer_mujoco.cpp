@@ -1,4 +1,5 @@
-// peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot]
+// peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot] [--tippe-top]
+//             [--euler-disk]
 // MuJoCo side by side (issue 21 item 5): the frictionless top of config/scenes/frictionless.yaml over a MuJoCo RK4
 // dt ladder, a top_sim dopri5 rtol ladder and top_sim rk4, implicit_midpoint and fitted_midpoint dt ladders, timed
 // interleaved in this
@@ -11,7 +12,8 @@
 // difference of that tilt from the reference's at the run's samples in the last second, over the same peak-to-peak
 // (about 0 in phase, about 1 out of phase, whatever the frequency). --check runs the cheap
 // assertions of the ctest smoke test; --softness splits MuJoCo's error into step and soft contact; --mjcf prints the
-// model; --pivot runs the pivoting upright top with condim 4 instead (pivot.cpp).
+// model; --pivot runs the pivoting upright top with condim 4 instead (pivot.cpp); --tippe-top and --euler-disk run
+// MuJoCo's tutorial tippe top and Euler's disk (mujoco_shapes.cpp, euler_disk.cpp; with --check: their ctests).
 #include <mujoco/mujoco.h>
 
 #include <algorithm>
@@ -25,6 +27,7 @@
 #include <string>
 #include <vector>
 
+#include "mujoco_shapes.hpp"
 #include "mujoco_top.hpp"
 #include "pivot.hpp"
 #include "top_sim/format.hpp"
@@ -639,12 +642,13 @@ int softness(const Scene& scene) {
   return 0;
 }
 
-const char* kUsage = "usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot]";
+const char* kUsage = "usage: peer_mujoco [--config DIR] [--reps N] [--csv FILE] [--mjcf] [--check] [--softness] [--pivot] "
+                     "[--tippe-top] [--euler-disk]";
 
 struct Options {
   std::string config = TOP_SIM_PEER_CONFIG_DIR, csv;
   int reps = 5;
-  bool check = false, print_mjcf = false, softness = false, pivot = false;
+  bool check = false, print_mjcf = false, softness = false, pivot = false, tippe_top = false, euler_disk = false;
 };
 
 int repetitions(const std::string& text) {
@@ -666,6 +670,8 @@ Options parse(int argc, char** argv) {
     else if (a == "--mjcf") o.print_mjcf = true;
     else if (a == "--softness") o.softness = true;
     else if (a == "--pivot") o.pivot = true;
+    else if (a == "--tippe-top") o.tippe_top = true;
+    else if (a == "--euler-disk") o.euler_disk = true;
     else throw std::invalid_argument(kUsage);
   }
   return o;
@@ -697,6 +703,9 @@ int main(int argc, char** argv) {
   try {
     const Options opt = parse(argc, argv);
     if (opt.pivot) return peer::pivot(opt.config, opt.reps, opt.csv);
+    const peer::ShapesOptions shapes{opt.reps, opt.check, opt.print_mjcf, opt.csv};
+    if (opt.tippe_top) return peer::tippe_top(shapes);
+    if (opt.euler_disk) return peer::euler_disk(shapes);
     const Scene scene = top_sim::load_scene(opt.config + "/scenes/frictionless.yaml");
     if (opt.print_mjcf) {
       std::cout << peer::mjcf(scene, 1e-3);

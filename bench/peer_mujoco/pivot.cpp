@@ -31,24 +31,6 @@ constexpr double kMu = 0.25;         // Coulomb coefficient, PMMA's mu_c
 constexpr double kPatch = 1.0e-3;    // patch radius a [m]: large enough for a spin loss of 7 % in kPivotT
 constexpr double kMinTimed = 0.05;   // CPU seconds per timed sample: short runs are repeated until this
 
-double thread_cpu() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return static_cast<double>(ts.tv_sec) + 1e-9 * static_cast<double>(ts.tv_nsec);
-}
-
-std::string num(double v) {
-  char buf[40];
-  std::snprintf(buf, sizeof buf, "%.17g", v);
-  return buf;
-}
-
-double median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
 // CPU seconds of one call of `run`, median over reps of batches long enough for the clock.
 template <class F>
 double cpu_per_run(F run, int reps) {
