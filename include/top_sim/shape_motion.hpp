@@ -9,7 +9,9 @@
 
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
+#include "top_sim/dynamics.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
 
 namespace top_sim {
 
@@ -49,6 +51,26 @@ struct TwoShapeMotion {
 TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
                                 const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
                                 const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
+
+// ---- A body with shapes in the Simulator's state (has_shapes(model)). The state's reference point keeps its
+// meaning in every mode: r_m = r_cm - f f_hat (f = top.com_offset, R = top.tip_radius: the first shape where it is a
+// sphere, else 0 and r_m the centre of mass), at height gap + R above the plane, moving at (u, gap_rate). While a
+// shape other than a tip sphere touches, gap and gap_rate move with it: the touching shape's own gap is the constraint.
+
+// g_k = z_cm + h_k(c) and its rate n . v_k, the material normal velocity at its lowest point.
+double shape_gap(const Model& model, const StateVector& y, const ContactShape& shape);
+double shape_gap_rate(const Model& model, const StateVector& y, const ContactShape& shape);
+// The shape with the least gap.
+std::size_t lowest_shape(const Model& model, const StateVector& y);
+// Moves gap (and, with `rate`, gap_rate) so that the touching shape's gap (and its rate) is exactly 0.
+void close_shape_gap(const Model& model, StateVector& y, bool rate);
+// The touching shape's motion in `mode` at the state y.
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
+// dy/dt of the body with shapes (no rotor, a point contact, no air).
+void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record);
+// Section 9's K, b, lever and contact velocity at the touching shape's lowest point.
+ContactResponse shape_contact_response(const Model& model, const StateVector& y);
 
 // The body's energy at centre of mass r_cm in the plane frame (section 4's E, no rotor).
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,

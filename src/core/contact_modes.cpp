@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rigid_body.hpp"
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/dynamics.hpp"
 
 namespace top_sim {
@@ -33,6 +34,7 @@ bool has_contact_modes(const Model& model) {
 }
 
 ContactResponse contact_response(const Model& model, const StateVector& y) {
+  if (has_shapes(model)) return shape_contact_response(model, y);
   const detail::RigidBody b(model, y);
   ContactResponse r;
   r.K = b.response_matrix();
@@ -53,8 +55,9 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
   // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
   // -d omega . f_hat.
-  const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
-                                                 : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
+  const Eigen::Vector3d rho = has_shapes(model) ? shape_contact_response(model, y).rho : b.rho;
+  const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(rho.cross(P))
+                                                 : b.inverse_inertia(rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
   const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
   set_velocity3(y, b.u + d_u);
   set_angular_velocity(y, b.w + d_omega);
@@ -86,15 +89,19 @@ void apply_stick_impulse(const Model& model, StateVector& y) {
 
 ClosingResult close_contact(const Model& model, StateVector& y) {
   ClosingResult out;
-  y[idx::gap] = 0.0;
-  y[idx::gap_rate] = 0.0;
+  if (has_shapes(model)) {
+    close_shape_gap(model, y, true);
+  } else {
+    y[idx::gap] = 0.0;
+    y[idx::gap_rate] = 0.0;
+  }
   if (!has_contact_modes(model)) return out;  // permanent slipping contact
   const double mu_s = static_friction(model);
   if (mu_s > 0.0) {
     const ContactResponse r = contact_response(model, y);
     double v_t = std::hypot(r.v_c.x(), r.v_c.y());
     bool holds;
-    if (point_contact(model)) {
+    if (point_contact(model) || has_shapes(model)) {
       holds = rolling_consistent(rolling_force(r), mu_s);
     } else {  // physics.md section 12: the generalised slip must be small and the stick set must hold
       const StickForce st = stick_force(model, y);
@@ -120,7 +127,11 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
 }
 
 ClosingResult initial_mode(const Model& model, StateVector& y) {
-  if (has_contact_modes(model) && (y[idx::gap] > 0.0 || y[idx::gap_rate] > 0.0)) {
+  const bool shapes = has_shapes(model);
+  const ContactShape& touching = model.shapes.shape[model.shapes.touching];
+  const double gap = shapes ? shape_gap(model, y, touching) : y[idx::gap];
+  const double gap_rate = shapes ? shape_gap_rate(model, y, touching) : y[idx::gap_rate];
+  if (has_contact_modes(model) && (gap > 0.0 || gap_rate > 0.0)) {
     ClosingResult out;
     out.mode = ContactMode::flight;
     return out;

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "simulator_impl.hpp"
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
 
@@ -32,6 +33,10 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
     case Event::fallen:
+      if (has_shapes(model_)) {  // a rim lying flat: the disc's end (shape_margins, dynamics.cpp)
+        end(EndState::lying_flat, m.tilt);
+        return;
+      }
       fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
       return;
     case Event::transfer:
@@ -46,11 +51,16 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       }
       break;
     case Event::lift_off:
-      y[idx::gap] = y[idx::gap_rate] = 0.0;
+      if (!has_shapes(model_)) y[idx::gap] = y[idx::gap_rate] = 0.0;  // a shape's gap is 0 already, not the state's
       switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
       break;
     case Event::touchdown: {
-      y[idx::gap] = 0.0;
+      if (has_shapes(model_)) {
+        model_.shapes.touching = lowest_shape(model_, y);
+        close_shape_gap(model_, y, false);
+      } else {
+        y[idx::gap] = 0.0;
+      }
       const double e0 = mechanical_energy(model_, y);
       const ImpactResult impact = apply_impact(model_, y);
       if (impact.painleve) {
@@ -68,7 +78,7 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
     default:
       return;
   }
-  if (fault_ == ContactFault::none) restart(y, t_, false); else commit(y, t_);
+  if (!stopped()) restart(y, t_, false); else commit(y, t_);
 }
 
 void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {

@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/orientation.hpp"
 
 namespace top_sim {
 
@@ -137,6 +138,90 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
   out.a_cm = model.plane.g_plane + (out.force[0] + out.force[1]) / top.mass;
   out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) - Ii_G;
   return out;
+}
+
+namespace {
+
+// The body's centre-of-mass quantities from the state (the reference point r_m = r_cm - f f_hat, shape_motion.hpp).
+struct BodyView {
+  Eigen::Vector3d v_cm, f_hat, w;
+  double z_cm = 0.0;
+};
+BodyView body_view(const Model& model, const StateVector& y) {
+  BodyView b;
+  const double f = model.top.com_offset;
+  b.f_hat = figure_axis(y).normalized();
+  b.w = angular_velocity(y);
+  b.v_cm = velocity3(y) + f * b.w.cross(b.f_hat);
+  b.z_cm = model.top.tip_radius + y[idx::gap] + f * b.f_hat.z();
+  return b;
+}
+
+const ContactShape& touching_shape(const Model& model) { return model.shapes.shape[model.shapes.touching]; }
+
+}  // namespace
+
+double shape_gap(const Model& model, const StateVector& y, const ContactShape& shape) {
+  const BodyView b = body_view(model, y);
+  return b.z_cm + shape_height(shape, b.f_hat.z());
+}
+
+double shape_gap_rate(const Model& model, const StateVector& y, const ContactShape& shape) {
+  const BodyView b = body_view(model, y);
+  return (b.v_cm + b.w.cross(shape_point(shape, b.f_hat, b.w).r)).z();
+}
+
+std::size_t lowest_shape(const Model& model, const StateVector& y) {
+  return lowest_shape(model.shapes, figure_axis(y).normalized());
+}
+
+void close_shape_gap(const Model& model, StateVector& y, bool rate) {
+  y[idx::gap] -= shape_gap(model, y, touching_shape(model));
+  if (rate) y[idx::gap_rate] -= shape_gap_rate(model, y, touching_shape(model));  // both are affine, slope 1
+}
+
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  return shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+}
+
+void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record) {
+  const BodyView b = body_view(model, y);
+  const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+  if (record) {
+    record->force = m.force;
+    record->drilling_torque = 0.0;
+    record->painleve = m.painleve;
+  }
+  // The reference point r_m = r_cm - f f_hat: a_m = a_cm - f (w' x f_hat + w x (w x f_hat)).
+  const double f = model.top.com_offset;
+  const Eigen::Vector3d a_m = m.a_cm - f * (m.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
+  const Eigen::Vector3d f_dot = b.w.cross(figure_axis(y));  // keeps |f_hat| in the exact flow
+  dydt[idx::x] = y[idx::u];
+  dydt[idx::x + 1] = y[idx::u + 1];
+  dydt[idx::u] = a_m.x();
+  dydt[idx::u + 1] = a_m.y();
+  for (int i = 0; i < 3; ++i) {
+    dydt[idx::f + i] = f_dot[i];
+    dydt[idx::omega + i] = m.omega_dot[i];
+  }
+  dydt[idx::nu] = 0.0;
+  dydt[idx::w_diss] = m.dissipation;
+  dydt[idx::gap] = y[idx::gap_rate];  // the touching shape's gap is the constraint, the reference point moves
+  dydt[idx::gap_rate] = a_m.z();
+  dydt[idx::psi] = spin_phase_rate(b.f_hat, b.w);
+}
+
+ContactResponse shape_contact_response(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  ContactResponse r;
+  r.K = cross_response(model.top, b.f_hat, p.r, p.r);
+  r.b = response_bias(model, p, b.w, inverse_inertia_gyro(model.top, b.f_hat, b.w));
+  r.rho = p.r;
+  r.v_c = b.v_cm + b.w.cross(p.r);
+  return r;
 }
 
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm,
