@@ -55,9 +55,16 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
   // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
   // -d omega . f_hat.
-  const Eigen::Vector3d rho = has_shapes(model) ? shape_contact_response(model, y).rho : b.rho;
-  const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(rho.cross(P))
-                                                 : b.inverse_inertia(rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
+  if (has_shapes(model)) {  // gap_rate is the touching shape's n . v_k: it changes by n . (dv_cm + d omega x r_k)
+    const Eigen::Vector3d r = shape_contact_response(model, y).rho, d_omega = b.inverse_inertia(r.cross(P));
+    const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
+    set_velocity(y, Eigen::Vector2d(y[idx::u] + d_u.x(), y[idx::u + 1] + d_u.y()));
+    y[idx::gap_rate] += (P / b.m + d_omega.cross(r)).z();
+    set_angular_velocity(y, b.w + d_omega);
+    return;
+  }
+  const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
+                                                 : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
   const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
   set_velocity3(y, b.u + d_u);
   set_angular_velocity(y, b.w + d_omega);
@@ -89,12 +96,8 @@ void apply_stick_impulse(const Model& model, StateVector& y) {
 
 ClosingResult close_contact(const Model& model, StateVector& y) {
   ClosingResult out;
-  if (has_shapes(model)) {
-    close_shape_gap(model, y, true);
-  } else {
-    y[idx::gap] = 0.0;
-    y[idx::gap_rate] = 0.0;
-  }
+  y[idx::gap] = 0.0;
+  y[idx::gap_rate] = 0.0;
   if (!has_contact_modes(model)) return out;  // permanent slipping contact
   const double mu_s = static_friction(model);
   if (mu_s > 0.0) {
@@ -127,11 +130,7 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
 }
 
 ClosingResult initial_mode(const Model& model, StateVector& y) {
-  const bool shapes = has_shapes(model);
-  const ContactShape& touching = model.shapes.shape[model.shapes.touching];
-  const double gap = shapes ? shape_gap(model, y, touching) : y[idx::gap];
-  const double gap_rate = shapes ? shape_gap_rate(model, y, touching) : y[idx::gap_rate];
-  if (has_contact_modes(model) && (gap > 0.0 || gap_rate > 0.0)) {
+  if (has_contact_modes(model) && (y[idx::gap] > 0.0 || y[idx::gap_rate] > 0.0)) {
     ClosingResult out;
     out.mode = ContactMode::flight;
     return out;

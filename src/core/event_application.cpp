@@ -51,16 +51,12 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       }
       break;
     case Event::lift_off:
-      if (!has_shapes(model_)) y[idx::gap] = y[idx::gap_rate] = 0.0;  // a shape's gap is 0 already, not the state's
+      y[idx::gap] = y[idx::gap_rate] = 0.0;
       switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
       break;
     case Event::touchdown: {
-      if (has_shapes(model_)) {
-        model_.shapes.touching = lowest_shape(model_, y);
-        close_shape_gap(model_, y, false);
-      } else {
-        y[idx::gap] = 0.0;
-      }
+      if (has_shapes(model_)) retouch(model_, y, lowest_shape(model_, y));  // the shape that reached the plane
+      y[idx::gap] = 0.0;
       const double e0 = mechanical_energy(model_, y);
       const ImpactResult impact = apply_impact(model_, y);
       if (impact.painleve) {

@@ -51,11 +51,6 @@ ImpactResult apply_impact(const Model& model, StateVector& y) {
   }
   out.impulse = P;
   apply_contact_impulse(model, P, y);
-  if (has_shapes(model)) {
-    out.normal_velocity_after = contact_response(model, y).v_c.z();
-    if (out.plastic) close_shape_gap(model, y, true);
-    return out;
-  }
   out.normal_velocity_after = y[idx::gap_rate];  // n . v_c = n . u: the normal part of R omega x n is 0
   if (out.plastic) y[idx::gap_rate] = 0.0;       // the contact closes exactly (rounding aside it already is)
   return out;

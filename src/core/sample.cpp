@@ -1,6 +1,8 @@
 // The sample: what a reader sees of the committed state, analysed once on the first read (physics.md section 10).
 #include "sample.hpp"
 
+#include "top_sim/shape_motion.hpp"
+
 #include <cmath>
 #include <cstring>
 
@@ -135,6 +137,10 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.orientation = pose.orientation;
   s.tip_velocity = u;
   s.com_velocity = u + w.cross(top.com_offset * f_hat);
+  if (has_shapes(model)) {  // the state's gap rate is the touching shape's (shape_motion.hpp)
+    s.com_velocity = shape_body_com_velocity(model, y);
+    s.tip_velocity = s.com_velocity - w.cross(top.com_offset * f_hat);
+  }
   s.contact_point = pose.contact_point;
   s.figure_axis = f_hat;
   s.angular_velocity = w;

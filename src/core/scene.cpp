@@ -599,13 +599,12 @@ void check_simulated_shapes(const Model& model, const std::string& file) {
   const char* refused = model.top.has_rotor                                     ? "top.rotor"
                         : model.finite_contact.has_patch()                       ? "contact.patch_radius"
                         : model.finite_contact.rolling_resistance != 0.0         ? "contact.rolling_resistance"
-                        : model.air.active()                                     ? "air"
                         : model.kind != ModelKind::full || model.automatic.enabled ? "model.kind"
                         : model.normal_force != NormalForceModel::constrained    ? "model.normal_force"
                                                                                  : nullptr;
   if (refused)
-    throw SceneError(file, refused, "not with a rim in top.shapes yet (a rim runs the point contact's full model "
-                                    "with the constrained normal force)");
+    throw SceneError(file, refused, "not with a rim in top.shapes yet (a rim runs the point contact's full model, "
+                                    "with air, and the constrained normal force)");
 }
 
 }  // namespace
@@ -706,10 +705,6 @@ StateVector initial_state(const Scene& scene) {
   y[idx::nu] = model.top.has_rotor ? ic.rotor_spin - ic.spin : 0.0;
   y[idx::gap] = ic.gap;
   y[idx::gap_rate] = ic.gap_rate;
-  if (has_shapes(model)) {  // initial.gap and gap_rate are shapes[0]'s: its lowest point starts at that height
-    y[idx::gap] -= shape_gap(model, y, model.shapes.shape[0]) - ic.gap;
-    y[idx::gap_rate] -= shape_gap_rate(model, y, model.shapes.shape[0]) - ic.gap_rate;
-  }
   return y;
 }
 
