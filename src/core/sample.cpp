@@ -77,6 +77,10 @@ Snapshot SimulatorImpl::snapshot() const {
     s.fault = fault_;
     s.fault_message = fault_message_;
   }
+  if (end_state_ != EndState::none) {
+    s.end_state = end_state_;
+    s.end_message = fault_message_;
+  }
   return s;
 }
 
@@ -166,7 +170,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.fault = ContactFault::none;
   if (model.kind == ModelKind::full) {
     if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
-    else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
+    else if (dyn.margins.tilt < 0.0 && !has_shapes(model)) s.fault = ContactFault::fallen;  // a rim: lying flat
   }
   s.regime = regime;
   s.energy = analysis.energy;

@@ -650,8 +650,8 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
 
   scene.events = read_events(s, file, scene.model);
   s.finish();
-  check_simulated_shapes(scene.model, file);
   check_initial_state(scene, file);
+  check_simulated_shapes(scene.model, file);
   return scene;
 }
 

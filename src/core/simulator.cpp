@@ -250,6 +250,7 @@ TopPose Simulator::pose() const { return top_pose(impl_->model_, impl_->y_, impl
 const StepperStats& Simulator::stats() const { return impl_->numeric_stepper().stats; }
 ContactFault Simulator::fault() const { return impl_->fault_; }
 EndState Simulator::end_state() const { return impl_->end_state_; }
+bool Simulator::stopped() const { return impl_->stopped(); }
 const std::string& Simulator::fault_message() const { return impl_->fault_message_; }
 const StationaryState& Simulator::stationary() const { return impl_->sample().stationary; }
 double Simulator::max_energy_residual() const { return impl_->max_energy_residual_seen_; }
