@@ -50,6 +50,12 @@ enum class ContactFault { none, painleve, fallen, numerical };
 
 const char* to_string(ContactFault fault);
 
+// Ends of a run that are no fault (physics.md section 13): the run stops there and says so.
+enum class EndState { none, lying_flat };
+
+const char* to_string(EndState state);
+std::string describe(EndState state, double margin, double t);
+
 // One line for the user: what happened at time t and the number that shows it (the margin of the fault).
 std::string describe(ContactFault fault, double value, double t);
 

@@ -24,6 +24,7 @@ constexpr std::size_t kMaxShapes = 4;
 struct ShapeSet {
   std::array<ContactShape, kMaxShapes> shape{};
   std::size_t count = 0;
+  std::size_t touching = 0;  // the shape in contact (set by the Simulator at touchdown; unused in flight)
 };
 
 // Where a shape meets the plane below it (n = e_z), relative to the centre of mass, and how that point moves.
@@ -37,6 +38,9 @@ struct ShapePoint {
 // The tilt's sine s = |n - c f_hat| below which a rim counts as lying flat: its lowest point is then not unique
 // (and h'' = rho / s^3 unbounded), the end state of a disc (physics.md section 13).
 constexpr double kFlatRimSine = 1e-9;
+// The tilt's sine at which a rolling rim's run ends, lying flat (a named end state, not a fault): at 1e-4 a disc of
+// 40 mm has its edge 4 um above the plane and circles at Omega = sqrt(4 g / (a s)) = 3.1e3 rad/s.
+constexpr double kFlatEndSine = 1e-4;
 
 // h(c) with c = n . f_hat: d c - r for a sphere, d c - rho sqrt(1 - c^2) for a rim.
 double shape_height(const ContactShape& shape, double c);

@@ -88,8 +88,10 @@ void model_derivative(const Model& model, ContactMode mode, const StateVector& y
 // The contact's model, decided once: a caller that integrates many steps of one model (the Simulator, at each
 // restart) passes it, and the right-hand side then runs only the code that model needs. `patch`: a patch (fixed or
 // Hertz) alone; `finite`: any section-12 term, rolling resistance and air included.
-enum class ContactModel : unsigned char { point, patch, finite };
+// `shapes`: a body whose contact is not the tip sphere alone (has_shapes, shape_motion.hpp).
+enum class ContactModel : unsigned char { point, patch, finite, shapes };
 inline ContactModel contact_model(const Model& model) {
+  if (has_shapes(model)) return ContactModel::shapes;
   if (point_contact(model)) return ContactModel::point;
   const bool patch_alone = model.finite_contact.rolling_resistance == 0.0 && !model.air.active();
   return patch_alone ? ContactModel::patch : ContactModel::finite;

@@ -1,7 +1,7 @@
 // The motion of a rigid axisymmetric body touching the plane with one of its contact shapes (physics.md sections 4,
 // 9 and 13): the contact modes of section 9 with the shape's lowest point r_k as the lever and w x r_k' in the bias,
 // d/dt v_c = K F - b for the material velocity at the contact v_c = v_cm + w x r_k. For the tip sphere it is the
-// motion dynamics.cpp integrates (tested to agree); a point contact, no rotor, no air.
+// motion dynamics.cpp integrates (tested to agree); a point contact and air (section 12), no rotor.
 #pragma once
 
 #include <Eigen/Core>
@@ -9,7 +9,9 @@
 
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
+#include "top_sim/dynamics.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/state.hpp"
 
 namespace top_sim {
 
@@ -24,7 +26,7 @@ struct ShapeMotion {
   double normal_force = 0.0;
   double mu = 0.0;           // slipping: mu(s); rolling: |F_t| / F_n; flight: 0
   double slip = 0.0;         // s of section 3, with the contact point's own velocity v_cm + r_k' for u
-  double dissipation = 0.0;  // mu N t_hat . v_t while slipping (rolling does no work)
+  double dissipation = 0.0;  // mu N t_hat . v_t while slipping (rolling does no work), and what air takes
   double painleve = ModeMargins::kNone;  // slipping: m n . K d (the fault where <= 0)
 };
 
@@ -49,6 +51,29 @@ struct TwoShapeMotion {
 TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
                                 const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
                                 const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w);
+
+// ---- A body with shapes in the Simulator's state (has_shapes(model)). x and u are the reference point's in-plane
+// position and velocity, r_m = r_cm - f f_hat (f = top.com_offset: the first shape's centre where it is a sphere,
+// else 0 and r_m the centre of mass); gap and gap_rate are the touching shape's gap g_k = z_cm + h_k(c) and its rate
+// n . v_k (model.shapes.touching: the tip sphere's gap and rate where it is the tip sphere), exactly 0 in contact.
+
+// g_k = z_cm + h_k(c) and its rate n . v_k, the material normal velocity at its lowest point.
+double shape_gap(const Model& model, const StateVector& y, const ContactShape& shape);
+double shape_gap_rate(const Model& model, const StateVector& y, const ContactShape& shape);
+// The shape with the least gap.
+std::size_t lowest_shape(const Model& model, const StateVector& y);
+// The centre of mass and its velocity in the plane frame.
+Eigen::Vector3d shape_body_com(const Model& model, const StateVector& y);
+Eigen::Vector3d shape_body_com_velocity(const Model& model, const StateVector& y);
+// Makes `shape` the touching one: the state's gap and gap_rate become its own (the body does not move).
+void retouch(Model& model, StateVector& y, std::size_t shape);
+// The touching shape's motion in `mode` at the state y.
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
+// dy/dt of the body with shapes (no rotor, a point contact, air).
+void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record);
+// Section 9's K, b, lever and contact velocity at the touching shape's lowest point.
+ContactResponse shape_contact_response(const Model& model, const StateVector& y);
 
 // The body's energy at centre of mass r_cm in the plane frame (section 4's E, no rotor).
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,

@@ -63,6 +63,10 @@ class Simulator {
   TopPose pose() const;
   const StepperStats& stats() const;
   ContactFault fault() const;
+  // A named end that stopped the run without a fault (physics.md section 13); fault_message() says it.
+  EndState end_state() const;
+  // A fault or an end state stopped the run: time() stays there.
+  bool stopped() const;
   const std::string& fault_message() const;
   // The analytic sleeping state for the current alpha and shell spin (solved on the first read, then cached).
   const StationaryState& stationary() const;

@@ -48,6 +48,8 @@ struct Snapshot {
   double energy_balance_residual = 0.0;
   ContactFault fault = ContactFault::none;
   std::string fault_message;
+  EndState end_state = EndState::none;  // a named end that stopped the run, no fault (physics.md section 13)
+  std::string end_message;
 };
 
 // True when every number of the snapshot is finite. The Simulator keeps its snapshots finite (a numerical fault

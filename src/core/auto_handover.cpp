@@ -44,7 +44,7 @@ bool SimulatorImpl::scan_reduced(double t_end, const StateVector& y1) {
   scanned_ = t_end;
   if (!model_.automatic.enabled) {
     run_cadence(t_end);
-    return fault_ == ContactFault::none;
+    return !stopped();
   }
   if (reduction_applies(reduction_, y1)) {
     skip_cadence(t_end);

@@ -1,5 +1,6 @@
 // Contact kinematics and faults (physics.md sections 3 and 4).
 #include "top_sim/contact.hpp"
+#include "top_sim/contact_shapes.hpp"
 #include "top_sim/format.hpp"
 
 #include <cmath>
@@ -35,6 +36,23 @@ std::string describe(ContactFault fault, double value, double t) {
             "use a smaller dt or another method";
       break;
   }
+  return os.str();
+}
+
+}  // namespace top_sim
+
+namespace top_sim {
+
+const char* to_string(EndState state) { return state == EndState::lying_flat ? "lying_flat" : "none"; }
+
+std::string describe(EndState state, double margin, double t) {
+  std::ostringstream os;
+  os << "t = " << format_number(t) << " s: ";
+  if (state == EndState::lying_flat)
+    os << "end state lying_flat: the rim lies flat (the tilt's sine is " << format_number(margin + kFlatEndSine)
+       << ", below " << format_number(kFlatEndSine) << ")";
+  else
+    os << "no end state";
   return os.str();
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "rigid_body.hpp"
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/dynamics.hpp"
 
 namespace top_sim {
@@ -33,6 +34,7 @@ bool has_contact_modes(const Model& model) {
 }
 
 ContactResponse contact_response(const Model& model, const StateVector& y) {
+  if (has_shapes(model)) return shape_contact_response(model, y);
   const detail::RigidBody b(model, y);
   ContactResponse r;
   r.K = b.response_matrix();
@@ -53,6 +55,14 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
   // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
   // -d omega . f_hat.
+  if (has_shapes(model)) {  // gap_rate is the touching shape's n . v_k: it changes by n . (dv_cm + d omega x r_k)
+    const Eigen::Vector3d r = shape_contact_response(model, y).rho, d_omega = b.inverse_inertia(r.cross(P));
+    const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
+    set_velocity(y, Eigen::Vector2d(y[idx::u] + d_u.x(), y[idx::u + 1] + d_u.y()));
+    y[idx::gap_rate] += (P / b.m + d_omega.cross(r)).z();
+    set_angular_velocity(y, b.w + d_omega);
+    return;
+  }
   const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
                                                  : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
   const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
@@ -94,7 +104,7 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
     const ContactResponse r = contact_response(model, y);
     double v_t = std::hypot(r.v_c.x(), r.v_c.y());
     bool holds;
-    if (point_contact(model)) {
+    if (point_contact(model) || has_shapes(model)) {
       holds = rolling_consistent(rolling_force(r), mu_s);
     } else {  // physics.md section 12: the generalised slip must be small and the stick set must hold
       const StickForce st = stick_force(model, y);

@@ -11,6 +11,7 @@
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/angular_momentum.hpp"
 #include "top_sim/orientation.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -267,7 +268,36 @@ template <ContactModel kContact>
 
 }  // namespace
 
+namespace {
+
+// A body with shapes: its touching shape's motion (shape_motion.hpp), mapped onto the Dynamics every reader uses.
+void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+  out = Dynamics{};
+  const ShapeMotion m = shape_motion(model, mode, y);
+  out.mu = m.mu;
+  out.normal_force = m.normal_force;
+  out.contact_force = m.force;
+  out.friction_force = Eigen::Vector3d(m.force.x(), m.force.y(), 0.0);
+  out.omega_dot = m.omega_dot;
+  out.a_cm = m.a_cm;
+  out.dissipation = m.dissipation;
+  out.contact.v_t = m.v_t;
+  out.contact.slip = m.slip;
+  StateVector dydt;
+  shape_derivative(model, mode, y, dydt, nullptr);
+  out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
+  out.psi_dot = dydt[idx::psi];
+  const ContactForceRecord record{m.force, 0.0, m.painleve};
+  if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
+  const Eigen::Vector3d F = rolling_force(shape_contact_response(model, y));
+  const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);
+  out.margins.transfer = std::max(m.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
+}
+
+}  // namespace
+
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+  if (has_shapes(model)) return evaluate_shape_dynamics(model, mode, y, out);
   // motion() expects the finite contact's fields zero: clear what an earlier evaluation left (a right-hand side
   // needs no clearing, its ContactDynamics is fresh).
   const bool point = point_contact(model);
@@ -300,7 +330,7 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
 }
 
 StickForce stick_force(const Model& model, const StateVector& y) {
-  if (point_contact(model)) return {rolling_force(contact_response(model, y)), 0.0};
+  if (point_contact(model) || has_shapes(model)) return {rolling_force(contact_response(model, y)), 0.0};
   detail::RigidBody b(model, y);
   Dynamics scratch;
   if (model.air.active()) add_air(model, b, scratch);
@@ -357,6 +387,8 @@ template <ContactModel kContact>
                                                    const StateVector& y, StateVector& dydt, ContactForceRecord* record) {
   if (contact == ContactModel::point)
     derivative_in<ContactModel::point>(model, mode, y, dydt, record);
+  else if (contact == ContactModel::shapes)
+    shape_derivative(model, mode, y, dydt, record);
   else if (contact == ContactModel::patch)
     derivative_in<ContactModel::patch>(model, mode, y, dydt, record);
   else
@@ -382,11 +414,31 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
   if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
 }
 
+namespace {
+
+// A body with shapes: in flight the least gap of its shapes is the touchdown's margin; on a rim, the tilt's sine
+// above kFlatEndSine is the margin of the flat end (the tilt margin's slot: its event ends the run).
+void shape_margins(const Model& model, ContactMode mode, const StateVector& y, ModeMargins& mg) {
+  mg.tilt = ModeMargins::kNone;
+  if (mode == ContactMode::flight) {
+    for (std::size_t k = 0; k < model.shapes.count; ++k)
+      mg.lift = std::min(mg.lift, shape_gap(model, y, model.shapes.shape[k]));
+    return;
+  }
+  if (model.shapes.shape[model.shapes.touching].kind == ShapeKind::rim) {
+    const double c = figure_axis(y).normalized().z();
+    mg.tilt = std::sqrt(std::max(0.0, 1.0 - c * c)) - kFlatEndSine;
+  }
+}
+
+}  // namespace
+
 bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
                          double cos_max_tilt, ModeMargins& mg) {
   mg = ModeMargins{};
   if (mode != ContactMode::flight && model.top.com_offset != 0.0)
     mg.tilt = figure_axis(y).normalized().z() - cos_max_tilt;
+  if (has_shapes(model) && mode != ContactMode::flight) shape_margins(model, mode, y, mg);
   switch (mode) {
     case ContactMode::slipping:
       mg.lift = r.force.z();
@@ -402,6 +454,7 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
       return true;
     case ContactMode::flight:
       mg.lift = y[idx::gap];
+      if (has_shapes(model)) shape_margins(model, mode, y, mg);
       return true;
   }
   return false;

@@ -1,7 +1,10 @@
 // Energy balance E + W_diss (physics.md section 4).
 #include "top_sim/energy.hpp"
 
+#include <algorithm>
 #include <cmath>
+
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -22,6 +25,9 @@ double kinetic_energy(const Model& model, const StateVector& y, const Eigen::Vec
 }  // namespace
 
 double mechanical_energy(const Model& model, const StateVector& y) {
+  if (has_shapes(model))
+    return shape_body_energy(model, shape_body_com(model, y), shape_body_com_velocity(model, y),
+                             figure_axis(y).normalized(), angular_velocity(y));
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d r_cm =
@@ -31,6 +37,13 @@ double mechanical_energy(const Model& model, const StateVector& y) {
 
 double energy_scale(const Model& model, const StateVector& y) {
   const Top& top = model.top;
+  if (has_shapes(model)) {  // the kinetic energy and m g times the body's reach from its centre of mass
+    double reach = 0.0;
+    for (std::size_t k = 0; k < model.shapes.count; ++k)
+      reach = std::max(reach, std::abs(model.shapes.shape[k].offset) + model.shapes.shape[k].radius);
+    const double potential = mechanical_energy(model, y) + top.mass * model.plane.g_plane.dot(shape_body_com(model, y));
+    return potential + top.mass * model.plane.gravity * reach;
+  }
   return kinetic_energy(model, y, figure_axis(y).normalized()) +
          top.mass * model.plane.gravity * (top.tip_radius + std::abs(top.com_offset));
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "simulator_impl.hpp"
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
 
@@ -32,6 +33,10 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
     case Event::fallen:
+      if (has_shapes(model_)) {  // a rim lying flat: the disc's end (shape_margins, dynamics.cpp)
+        end(EndState::lying_flat, m.tilt);
+        return;
+      }
       fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
       return;
     case Event::transfer:
@@ -50,6 +55,7 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
       break;
     case Event::touchdown: {
+      if (has_shapes(model_)) retouch(model_, y, lowest_shape(model_, y));  // the shape that reached the plane
       y[idx::gap] = 0.0;
       const double e0 = mechanical_energy(model_, y);
       const ImpactResult impact = apply_impact(model_, y);
@@ -68,7 +74,7 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
     default:
       return;
   }
-  if (fault_ == ContactFault::none) restart(y, t_, false); else commit(y, t_);
+  if (!stopped()) restart(y, t_, false); else commit(y, t_);
 }
 
 void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {

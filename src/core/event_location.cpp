@@ -111,7 +111,7 @@ bool SimulatorImpl::scan_step(double t_end) {
   if (model_.kind != ModelKind::full) return scan_reduced(t_end, y1);
   const LocatedEvent e = locate_event(t_end, y1);
   run_cadence(e.kind == Event::none ? t_end : e.t);  // the regime's points up to the event, on this dense output
-  if (fault_ != ContactFault::none || (handover_due_ && take_handover())) return false;
+  if (stopped() || (handover_due_ && take_handover())) return false;
   if (e.kind == Event::none) return true;
   StateVector y;
   stepper_->state_at(e.t, y);
@@ -167,7 +167,7 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
 bool SimulatorImpl::scan_flight(double t_end, const StateVector& y1) {
   scanned_ = t_end;
   run_cadence(t_end);
-  if (fault_ != ContactFault::none) return false;
+  if (stopped()) return false;
   if (!(t_end == stepper_->time() && static_cast<const FlightStepper&>(*stepper_).at_touchdown())) return true;
   commit(y1, t_end);
   apply_event(Event::touchdown, margins_of(model_, mode_, y_));

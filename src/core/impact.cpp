@@ -1,6 +1,8 @@
 // Touchdown impact (physics.md section 9).
 #include "top_sim/impact.hpp"
 
+#include "top_sim/shape_motion.hpp"
+
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
@@ -22,8 +24,14 @@ ImpactResult apply_impact(const Model& model, StateVector& y) {
     out.plastic = true;
   }
   // s- and t_hat- from the in-plane parts only (t_hat- is defined at v_t = 0).
-  const ContactKinematics k = contact_kinematics(model, Eigen::Vector3d(y[idx::u], y[idx::u + 1], 0.0),
-                                                 angular_velocity(y));
+  ContactKinematics k;
+  if (has_shapes(model)) {
+    const ShapeMotion m = shape_motion(model, ContactMode::flight, y);
+    k.slip = m.slip;
+    k.t_hat = m.v_t / std::sqrt(m.v_t.squaredNorm() + model.regularization_speed * model.regularization_speed);
+  } else {
+    k = contact_kinematics(model, Eigen::Vector3d(y[idx::u], y[idx::u + 1], 0.0), angular_velocity(y));
+  }
   const double mu_i = std::max(static_friction(model), friction_coefficient(model.friction, k.slip));
 
   // Branch 1: the sticking impulse that leaves v_c+ = -e (n . v_c-) n.

@@ -2,6 +2,7 @@
 
 #include <cmath>
 
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/orientation.hpp"
 
 namespace top_sim {
@@ -15,6 +16,13 @@ TopPose top_pose(const Model& model, const StateVector& y, double t) {
   p.com = p.tip_center + model.top.com_offset * f_hat;
   p.orientation = body_orientation(f_hat, y[idx::psi]);
   p.contact_point = Eigen::Vector3d(y[idx::x], y[idx::x + 1], 0.0);
+  if (has_shapes(model)) {  // the state's gap is the touching shape's; the contact point below its lowest point
+    p.com = shape_body_com(model, y);
+    p.tip_center = p.com - model.top.com_offset * f_hat;
+    const ContactShape& shape = model.shapes.shape[model.shapes.touching];
+    p.contact_point = p.com + shape_point(shape, f_hat, Eigen::Vector3d::Zero()).r;
+    p.contact_point.z() = 0.0;
+  }
   return p;
 }
 

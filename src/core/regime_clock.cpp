@@ -9,7 +9,7 @@ namespace top_sim {
 
 // The regime points in (cadence_t_, t_end], each on the dense output of the step that holds it.
 void SimulatorImpl::run_cadence(double t_end) {
-  while (fault_ == ContactFault::none && !handover_due_) {
+  while (!stopped() && !handover_due_) {
     const double tk = t_origin_ + static_cast<double>(cadence_k_ + 1) * Simulator::kRegimeCadence;
     if (tk > t_end) return;
     ++cadence_k_;

@@ -1,6 +1,8 @@
 // The sample: what a reader sees of the committed state, analysed once on the first read (physics.md section 10).
 #include "sample.hpp"
 
+#include "top_sim/shape_motion.hpp"
+
 #include <cmath>
 #include <cstring>
 
@@ -75,6 +77,10 @@ Snapshot SimulatorImpl::snapshot() const {
     s.fault = fault_;
     s.fault_message = fault_message_;
   }
+  if (end_state_ != EndState::none) {
+    s.end_state = end_state_;
+    s.end_message = fault_message_;
+  }
   return s;
 }
 
@@ -135,6 +141,10 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.orientation = pose.orientation;
   s.tip_velocity = u;
   s.com_velocity = u + w.cross(top.com_offset * f_hat);
+  if (has_shapes(model)) {  // the state's gap rate is the touching shape's (shape_motion.hpp)
+    s.com_velocity = shape_body_com_velocity(model, y);
+    s.tip_velocity = s.com_velocity - w.cross(top.com_offset * f_hat);
+  }
   s.contact_point = pose.contact_point;
   s.figure_axis = f_hat;
   s.angular_velocity = w;
@@ -160,7 +170,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.fault = ContactFault::none;
   if (model.kind == ModelKind::full) {
     if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
-    else if (dyn.margins.tilt < 0.0) s.fault = ContactFault::fallen;
+    else if (dyn.margins.tilt < 0.0 && !has_shapes(model)) s.fault = ContactFault::fallen;  // a rim: lying flat
   }
   s.regime = regime;
   s.energy = analysis.energy;

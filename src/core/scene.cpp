@@ -19,6 +19,7 @@
 #include "top_sim/energy.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
+#include "top_sim/shape_motion.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {
@@ -235,10 +236,10 @@ ShapeSet read_shapes(Section& s, const std::string& file, Top& top) {
   for (std::size_t i = 0; i < list.size(); ++i)
     shapes.shape[i] = read_shape(list[i], file, key + "[" + std::to_string(i) + "]");
   shapes.count = list.size();
-  if (shapes.shape[0].kind == ShapeKind::sphere) {
-    top.tip_radius = shapes.shape[0].radius;
-    top.com_offset = -shapes.shape[0].offset;
-  }
+  // The state's reference point (shape_motion.hpp): the first sphere's centre, else the centre of mass.
+  const bool tip = shapes.shape[0].kind == ShapeKind::sphere;
+  top.tip_radius = tip ? shapes.shape[0].radius : 0.0;
+  top.com_offset = tip ? -shapes.shape[0].offset : 0.0;
   return shapes;
 }
 
@@ -580,7 +581,7 @@ void check_initial_state(const Scene& scene, const std::string& file) {
                                           " J: a speed, spin or position too large for double precision");
   const double max_tilt = scene.model.top.max_tilt;
   const double tilt = std::acos(std::clamp(figure_axis(y).normalized().z(), -1.0, 1.0));  // from the plane normal
-  if (tilt >= max_tilt)
+  if (tilt >= max_tilt && !has_shapes(scene.model))  // a body with a rim has no max_tilt: the rim touches
     throw SceneError(file, scene.initial.start == StartKind::tilted ? "initial.tilt" : "initial.start",
                      "the figure axis starts " + fmt(tilt) + " rad from the plane normal; must be < top.max_tilt = " +
                          fmt(max_tilt) + " rad (a top tilted further has fallen over)");
@@ -589,11 +590,21 @@ void check_initial_state(const Scene& scene, const std::string& file) {
 
 // The Simulator steps one sphere: the tip. The core has several shapes' geometry and motion (shape_motion.hpp), but
 // no mode, event or output of theirs yet (docs/design/contact_shapes.md), so such a body is refused, not run wrong.
-void check_simulated_shapes(const ShapeSet& shapes, const std::string& file) {
-  if (shapes.count <= 1 && shapes.shape[0].kind == ShapeKind::sphere) return;
-  throw SceneError(file, "top.shapes",
-                   shapes.count > 1 ? std::to_string(shapes.count) + " shapes are not simulated yet; give one sphere"
-                                    : std::string("a rim alone is not simulated yet; give one sphere"));
+void check_simulated_shapes(const Model& model, const std::string& file) {
+  if (!has_shapes(model)) return;
+  if (model.shapes.count > 1)
+    throw SceneError(file, "top.shapes", std::to_string(model.shapes.count) +
+                                             " shapes are not simulated yet; give one sphere or one rim");
+  // A rim's body runs the point contact's full model for now: the rest is the tip sphere's alone.
+  const char* refused = model.top.has_rotor                                     ? "top.rotor"
+                        : model.finite_contact.has_patch()                       ? "contact.patch_radius"
+                        : model.finite_contact.rolling_resistance != 0.0         ? "contact.rolling_resistance"
+                        : model.kind != ModelKind::full || model.automatic.enabled ? "model.kind"
+                        : model.normal_force != NormalForceModel::constrained    ? "model.normal_force"
+                                                                                 : nullptr;
+  if (refused)
+    throw SceneError(file, refused, "not with a rim in top.shapes yet (a rim runs the point contact's full model, "
+                                    "with air, and the constrained normal force)");
 }
 
 }  // namespace
@@ -640,7 +651,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   scene.events = read_events(s, file, scene.model);
   s.finish();
   check_initial_state(scene, file);
-  check_simulated_shapes(scene.model.shapes, file);
+  check_simulated_shapes(scene.model, file);
   return scene;
 }
 

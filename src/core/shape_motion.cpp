@@ -9,6 +9,7 @@
 #include <cmath>
 
 #include "top_sim/friction.hpp"
+#include "top_sim/orientation.hpp"
 
 namespace top_sim {
 
@@ -37,9 +38,26 @@ Eigen::Vector3d inverse_inertia_gyro(const Top& top, const Eigen::Vector3d& f_ha
   const Eigen::Vector3d L = top.inertia_transverse * w + (top.inertia_axial - top.inertia_transverse) * w.dot(f_hat) * f_hat;
   return inverse_inertia(top, f_hat, w.cross(L));
 }
-Eigen::Vector3d response_bias(const Model& model, const ShapePoint& p, const Eigen::Vector3d& w,
-                              const Eigen::Vector3d& Ii_G) {
-  return -(model.plane.g_plane + p.r.cross(Ii_G) + w.cross(p.r_rate));
+// What acts on the body besides its contacts: gravity, and air (physics.md section 12: -c v_cm at the centre of
+// mass, -k w), as the centre of mass's acceleration g, the torque-free part I^-1 G less I^-1 of air's torque, and
+// the power air takes.
+struct FreeMotion {
+  Eigen::Vector3d g, Ii_G;
+  double air_power = 0.0;
+};
+FreeMotion free_motion(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
+                       const Eigen::Vector3d& w) {
+  FreeMotion free{model.plane.g_plane, inverse_inertia_gyro(model.top, f_hat, w), 0.0};
+  if (!model.air.active()) return free;
+  const Eigen::Vector3d force = -model.air.drag * v_cm, torque = -model.air.spin_drag * w;
+  free.g += force / model.top.mass;
+  free.Ii_G -= inverse_inertia(model.top, f_hat, torque);
+  free.air_power = -(force.dot(v_cm) + torque.dot(w));
+  return free;
+}
+
+Eigen::Vector3d response_bias(const FreeMotion& free, const ShapePoint& p, const Eigen::Vector3d& w) {
+  return -(free.g + p.r.cross(free.Ii_G) + w.cross(p.r_rate));
 }
 
 // K_kj = (1/m) 1 - [r_k]x I^-1 [r_j]x: d/dt v_k per newton at contact j.
@@ -58,10 +76,9 @@ Eigen::Matrix3d cross_response(const Top& top, const Eigen::Vector3d& f_hat, con
 ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
                          const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
   const Top& top = model.top;
-  const Eigen::Vector3d& g = model.plane.g_plane;
   const ShapePoint p = shape_point(shape, f_hat, w);
-  const Eigen::Vector3d Ii_G = inverse_inertia_gyro(top, f_hat, w);
-  const Eigen::Vector3d b = response_bias(model, p, w, Ii_G);
+  const FreeMotion free = free_motion(model, v_cm, f_hat, w);
+  const Eigen::Vector3d b = response_bias(free, p, w);
   Eigen::Vector3d t_hat;
   ShapeMotion out;
   slip_and_friction(model, v_cm, w, p, out, t_hat);
@@ -78,8 +95,9 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
     out.normal_force = out.force.z();
     out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
   }
-  out.a_cm = g + out.force / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force)) - Ii_G;
+  out.a_cm = free.g + out.force / top.mass;
+  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force)) - free.Ii_G;
+  out.dissipation += free.air_power;
   return out;
 }
 
@@ -88,11 +106,11 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
                                 const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
   const Top& top = model.top;
   const std::array<ShapePoint, 2> p{shape_point(shapes[0], f_hat, w), shape_point(shapes[1], f_hat, w)};
-  const Eigen::Vector3d Ii_G = inverse_inertia_gyro(top, f_hat, w);
+  const FreeMotion free = free_motion(model, v_cm, f_hat, w);
   Eigen::Matrix<double, 6, 6> K;
   Eigen::Matrix<double, 6, 1> b;
   for (int k = 0; k < 2; ++k) {
-    b.segment<3>(3 * k) = response_bias(model, p[k], w, Ii_G);
+    b.segment<3>(3 * k) = response_bias(free, p[k], w);
     for (int j = 0; j < 2; ++j) K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
   }
   // Unknowns: F_k of a stuck contact, N_k of a slipping one (F_k = N_k d_k); rows: all of v_k' = 0 stuck, n . v_k' = 0
@@ -134,9 +152,112 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
   }
   if (A.rows() == 2 && A.cols() == 2)
     out.painleve = top.mass * std::min({A(0, 0), A(1, 1), A.determinant() / (A(0, 0) + A(1, 1))});
-  out.a_cm = model.plane.g_plane + (out.force[0] + out.force[1]) / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) - Ii_G;
+  out.a_cm = free.g + (out.force[0] + out.force[1]) / top.mass;
+  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) - free.Ii_G;
+  out.dissipation += free.air_power;
   return out;
+}
+
+namespace {
+
+// The body's centre-of-mass quantities from the state (the reference point r_m = r_cm - f f_hat, shape_motion.hpp).
+struct BodyView {
+  Eigen::Vector3d v_cm, f_hat, w;
+  double z_cm = 0.0;
+};
+const ContactShape& touching_shape(const Model& model) { return model.shapes.shape[model.shapes.touching]; }
+
+// The state's gap and gap_rate are the touching shape's, g_k = z_cm + h_k(c) and n . v_k: z_cm = g_k - h_k(c) and
+// n . v_cm = g_k' - n . (w x r_k); in-plane, v_cm = u + f w x f_hat.
+BodyView body_view(const Model& model, const StateVector& y) {
+  BodyView b;
+  b.f_hat = figure_axis(y).normalized();
+  b.w = angular_velocity(y);
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  b.z_cm = y[idx::gap] - p.height;
+  b.v_cm = in_plane_velocity(y) + model.top.com_offset * b.w.cross(b.f_hat);
+  b.v_cm.z() = y[idx::gap_rate] - b.w.cross(p.r).z();
+  return b;
+}
+
+}  // namespace
+
+Eigen::Vector3d shape_body_com(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const Eigen::Vector3d in_plane = Eigen::Vector3d(y[idx::x], y[idx::x + 1], 0.0) + model.top.com_offset * b.f_hat;
+  return {in_plane.x(), in_plane.y(), b.z_cm};
+}
+
+Eigen::Vector3d shape_body_com_velocity(const Model& model, const StateVector& y) { return body_view(model, y).v_cm; }
+
+void retouch(Model& model, StateVector& y, std::size_t shape) {
+  const BodyView b = body_view(model, y);
+  model.shapes.touching = shape;
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  y[idx::gap] = b.z_cm + p.height;
+  y[idx::gap_rate] = b.v_cm.z() + b.w.cross(p.r).z();
+}
+
+double shape_gap(const Model& model, const StateVector& y, const ContactShape& shape) {
+  const BodyView b = body_view(model, y);
+  return b.z_cm + shape_height(shape, b.f_hat.z());
+}
+
+double shape_gap_rate(const Model& model, const StateVector& y, const ContactShape& shape) {
+  const BodyView b = body_view(model, y);
+  return (b.v_cm + b.w.cross(shape_point(shape, b.f_hat, b.w).r)).z();
+}
+
+std::size_t lowest_shape(const Model& model, const StateVector& y) {
+  return lowest_shape(model.shapes, figure_axis(y).normalized());
+}
+
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  return shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+}
+
+void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record) {
+  const BodyView b = body_view(model, y);
+  const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+  if (record) {
+    record->force = m.force;
+    record->drilling_torque = 0.0;
+    record->painleve = m.painleve;
+  }
+  // The reference point r_m = r_cm - f f_hat in the plane: a_m = a_cm - f (w' x f_hat + w x (w x f_hat)).
+  const double f = model.top.com_offset;
+  const Eigen::Vector3d a_m = m.a_cm - f * (m.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
+  // The touching shape's gap: g_k'' = n . (a_cm + w' x r_k + w x r_k') in flight (0 in contact, by the constraint).
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  const double g_k_acceleration = (m.a_cm + m.omega_dot.cross(p.r) + b.w.cross(p.r_rate)).z();
+  const Eigen::Vector3d f_dot = b.w.cross(figure_axis(y));  // keeps |f_hat| in the exact flow
+  dydt[idx::x] = y[idx::u];
+  dydt[idx::x + 1] = y[idx::u + 1];
+  dydt[idx::u] = a_m.x();
+  dydt[idx::u + 1] = a_m.y();
+  for (int i = 0; i < 3; ++i) {
+    dydt[idx::f + i] = f_dot[i];
+    dydt[idx::omega + i] = m.omega_dot[i];
+  }
+  dydt[idx::nu] = 0.0;
+  dydt[idx::w_diss] = m.dissipation;
+  // In contact the touching shape's gap and its rate stay exactly 0 (no drift to correct), as the tip sphere's.
+  dydt[idx::gap] = mode == ContactMode::flight ? y[idx::gap_rate] : 0.0;
+  dydt[idx::gap_rate] = mode == ContactMode::flight ? g_k_acceleration : 0.0;
+  dydt[idx::psi] = spin_phase_rate(b.f_hat, b.w);
+}
+
+ContactResponse shape_contact_response(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  ContactResponse r;
+  r.K = cross_response(model.top, b.f_hat, p.r, p.r);
+  r.b = response_bias(free_motion(model, b.v_cm, b.f_hat, b.w), p, b.w);
+  r.rho = p.r;
+  r.v_c = b.v_cm + b.w.cross(p.r);
+  return r;
 }
 
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm,

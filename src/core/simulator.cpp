@@ -57,16 +57,16 @@ SimulatorImpl::SimulatorImpl(const Scene& scene)
 // A finite budget ends the call at the first step boundary after its deadline (the stepper continues from there).
 bool SimulatorImpl::advance_to(double t_target, double budget_seconds, Clock::time_point start) {
   StepBudget budget{std::isfinite(budget_seconds), start, deadline_after(start, budget_seconds), t_, false};
-  while (fault_ == ContactFault::none && t_ < t_target) {
+  while (!stopped() && t_ < t_target) {
     apply_pending();  // 1
-    if (fault_ != ContactFault::none) break;
+    if (stopped()) break;
     const double t_stop = std::min(t_target, next_event_t_);
     const Reach reach = step_to(t_stop, budget);  // 2
     if (reach == Reach::out_of_budget) return false;
     if (reach == Reach::fault) break;
     commit_stop(t_stop);  // 3
   }
-  if (fault_ == ContactFault::none) apply_pending();  // events due exactly at t_target take effect now
+  if (!stopped()) apply_pending();  // events due exactly at t_target take effect now
   return true;
 }
 
@@ -78,7 +78,7 @@ SimulatorImpl::Reach SimulatorImpl::step_to(double t_stop, StepBudget& b) {
       // Events are scanned on the dense output up to t_stop only: an event beyond it waits for the next call.
       const double t_scan = std::min(stepper_->time(), t_stop);
       if (scanned_ < t_scan && !scan_step(t_scan)) {
-        if (fault_ != ContactFault::none) return Reach::fault;
+        if (stopped()) return Reach::fault;
         b.worked = true;
         continue;  // the state is at the event; the stepper restarted there
       }
@@ -146,6 +146,7 @@ void SimulatorImpl::reset() {
   next_event_ = 0;
   schedule_next_event();
   fault_ = ContactFault::none;
+  end_state_ = EndState::none;
   fault_message_.clear();
   max_energy_residual_seen_ = 0.0;
   mode_seconds_.fill(0.0);
@@ -155,6 +156,7 @@ void SimulatorImpl::reset() {
   last_switch_t_ = -1.0;
   // A stick impulse here is part of the initial state; a Painleve state comes back as slipping, and restart()
   // reports it from the slipping margins.
+  model_.shapes.touching = 0;  // the start places shapes[0] on the plane (scene.cpp)
   mode_ = initial_mode(model_, y).mode;
   mode_since_ = t_;
   restart(y, t_, true);
@@ -168,7 +170,7 @@ void SimulatorImpl::reset() {
   handover_due_ = false;
   handovers_ = 0;
   reduced_seconds_ = 0.0;
-  if (fault_ == ContactFault::none) cadence_point(t_, y_);
+  if (!stopped()) cadence_point(t_, y_);
   take_handover();  // a scene that starts asleep hands over at once
 }
 
@@ -191,12 +193,14 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
   last_margins_ = margins_of(model_, mode_, y_);
   lift_armed_ = last_margins_.lift > 0.0;
   transfer_armed_ = last_margins_.transfer > 0.0;
-  if (fault_ != ContactFault::none) return;
+  if (stopped()) return;
   if (!all_finite(y_)) {
     fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));
   } else if (model_.kind == ModelKind::full) {
     if (last_margins_.painleve <= 0.0)
       fail(ContactFault::painleve, describe(ContactFault::painleve, last_margins_.painleve, t_));
+    else if (last_margins_.tilt < 0.0 && has_shapes(model_))
+      end(EndState::lying_flat, last_margins_.tilt);
     else if (last_margins_.tilt < 0.0)
       fail(ContactFault::fallen, describe(ContactFault::fallen, last_margins_.tilt, t_));
   }
@@ -213,9 +217,15 @@ void SimulatorImpl::stop_at_step_start(const std::string& detail) {
 }
 
 void SimulatorImpl::fail(ContactFault fault, const std::string& message) {
-  if (fault_ != ContactFault::none) return;
+  if (stopped()) return;
   fault_ = fault;
   fault_message_ = message;
+}
+
+void SimulatorImpl::end(EndState state, double margin) {
+  if (stopped()) return;
+  end_state_ = state;
+  fault_message_ = describe(state, margin, t_);
 }
 
 // The user's surface: each call is the stage's.
@@ -239,6 +249,8 @@ Snapshot Simulator::snapshot() const { return impl_->snapshot(); }
 TopPose Simulator::pose() const { return top_pose(impl_->model_, impl_->y_, impl_->t_); }
 const StepperStats& Simulator::stats() const { return impl_->numeric_stepper().stats; }
 ContactFault Simulator::fault() const { return impl_->fault_; }
+EndState Simulator::end_state() const { return impl_->end_state_; }
+bool Simulator::stopped() const { return impl_->stopped(); }
 const std::string& Simulator::fault_message() const { return impl_->fault_message_; }
 const StationaryState& Simulator::stationary() const { return impl_->sample().stationary; }
 double Simulator::max_energy_residual() const { return impl_->max_energy_residual_seen_; }

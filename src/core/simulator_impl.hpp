@@ -86,6 +86,7 @@ class SimulatorImpl {
   double scanned_ = 0.0;        // event location: the current step is scanned up to here
   std::unique_ptr<Stepper> stepper_;
   ContactFault fault_ = ContactFault::none;  // the first fault stops the run; time() stays at it
+  EndState end_state_ = EndState::none;      // a named end (a disc lying flat) stops it too, not as a fault
   ContactMode mode_ = ContactMode::slipping;
   ContactModel contact_model_ = ContactModel::point;  // contact_model(model_), set at each restart
   bool closed_flight_ = false;                        // stepper_ is the closed-form flight
@@ -181,6 +182,8 @@ class SimulatorImpl {
   void commit(const StateVector& y, double t);
   void restart(const StateVector& y, double t, bool rebase_energy);
   void fail(ContactFault fault, const std::string& message);
+  void end(EndState state, double margin);  // stops the run at a named end state (message in fault_message_)
+  bool stopped() const { return fault_ != ContactFault::none || end_state_ != EndState::none; }
   void stop_at_step_start(const std::string& detail);
   enum class Reach { stop, fault, out_of_budget };
   Reach step_to(double t_stop, StepBudget& budget);

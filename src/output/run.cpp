@@ -125,7 +125,7 @@ RunResult run(Simulator& sim, const RunOptions& opt) {
       }
       advance_to(t);
       take_sample();
-      if (sim.fault() != ContactFault::none) break;
+      if (sim.stopped()) break;
     }
   } else {
     advance_to(t_mark);

@@ -175,6 +175,8 @@ void add_outcome(JsonObject& o, const Outcome& c) {
   else
     o.missing("contact_fault_kind", "TopState carries the fault's text (contact_fault), not its kind");
   o["contact_mode"] = faulted(f) ? Json(nullptr) : Json(to_string(f.contact_mode));
+  o["end_state"] = f.end_state == EndState::none ? Json(nullptr) : Json(to_string(f.end_state));
+  o["end_state_message"] = text_or_null(f.end_message);
 }
 
 // [{"t", "kind", "from", "to", "energy_change"}, ...]; kind and energy_change only for located switches.

@@ -269,7 +269,7 @@ class PySimulator {
       if (k > 0) sim_->advance_to(sample_time(t0, k, rate));
       const Snapshot s = sim_->snapshot();
       for (const TrajectoryColumn& c : columns) values.push_back(c.value(s));
-      if (sim_->fault() != ContactFault::none) break;
+      if (sim_->stopped()) break;
     }
   }
 

@@ -55,7 +55,7 @@ void NodeTop::install(TopTopics topics) {
 }
 
 void NodeTop::advance(double wall, double budget, bool paused, std::chrono::steady_clock::time_point start) {
-  const bool running = !paused && sim_->fault() == top_sim::ContactFault::none;
+  const bool running = !paused && !sim_->stopped();
   if (!running) {
     sim_->advance_to(sim_->time());  // applies pending commands without moving time
   } else {
@@ -83,6 +83,10 @@ std::size_t NodeTop::take_steps() {
 }
 
 void NodeTop::report(double real_time_factor, double publish_rate, bool paused) {
+  if (sim_->end_state() != top_sim::EndState::none && !fault_reported_) {
+    fault_reported_ = true;  // a named end, no fault: said once, as information
+    ROS_INFO("top_sim_node: top %s: %s (call ~reset to run again)", name_.c_str(), sim_->fault_message().c_str());
+  }
   if (sim_->fault() != top_sim::ContactFault::none && !fault_reported_) {
     fault_reported_ = true;
     if (launch_top())
@@ -101,7 +105,7 @@ void NodeTop::report(double real_time_factor, double publish_rate, bool paused) 
     ROS_WARN("top_sim_node: falling behind: achieved %.3g of requested %.3g (the physics gets %.3g ms of each "
              "%.3g ms period; debt beyond %.2g s is dropped)", achieved, real_time_factor, 1e3 * pacer_.budget(),
              1e3 / publish_rate, pacer_.options().max_debt);
-  } else if (paused || sim_->fault() != top_sim::ContactFault::none) {
+  } else if (paused || sim_->stopped()) {
     ROS_INFO("top_sim_node: %s: no longer falling behind", paused ? "paused" : "stopped by a contact fault");
   } else {
     ROS_INFO("top_sim_node: caught up: achieved real-time factor %.4g of requested %.4g", achieved, real_time_factor);

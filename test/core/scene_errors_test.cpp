@@ -331,18 +331,27 @@ TEST(SceneErrors, ContactShapes) {
                "the rim starts", "below the plane at the initial tilt 1.2 rad");
 }
 
-// One sphere in top.shapes is the tip sphere: the same scene as tip_radius and com_offset; a rim or several shapes
-// are refused until the Simulator steps them.
-TEST(SceneShapes, OneSphereIsTheTipSphereAndMoreIsRefusedForNow) {
+// One sphere in top.shapes is the tip sphere: the same scene as tip_radius and com_offset. A rim runs the point
+// contact's full model; several shapes, and a rim with the tip sphere's other models, are refused for now.
+TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   const top_sim::Scene listed = scene_from("top: {shapes: [{sphere: {offset: -0.012, radius: 2.0e-3}}]}\n");
   const top_sim::Scene keyed = scene_from("top: {tip_radius: 2.0e-3, com_offset: 0.012}\n");
   EXPECT_EQ(listed.model.top.tip_radius, keyed.model.top.tip_radius);
   EXPECT_EQ(listed.model.top.com_offset, keyed.model.top.com_offset);
   EXPECT_EQ(listed.model.shapes.count, 1u);
   EXPECT_EQ(keyed.model.shapes.count, 0u);
+  EXPECT_FALSE(top_sim::has_shapes(listed.model));
   expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}, {rim: {offset: 0.004, radius: 0.02}}]}\n",
-               "top.shapes", "2 shapes are not simulated yet", "give one sphere");
-  expect_error("top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, "
-               "shapes: [{rim: {offset: 0, radius: 0.04}}]}\n", "top.shapes", "a rim alone is not simulated yet",
-               "give one sphere");
+               "top.shapes", "2 shapes are not simulated yet", "give one sphere or one rim");
+  const std::string disc = "top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, "
+                           "shapes: [{rim: {offset: 0, radius: 0.04}}]";
+  const top_sim::Scene rim = scene_from(disc + "}\n");
+  EXPECT_TRUE(top_sim::has_shapes(rim.model));
+  EXPECT_EQ(rim.model.top.tip_radius, 0.0);  // the state's reference point is the centre of mass
+  EXPECT_EQ(rim.model.top.com_offset, 0.0);
+  expect_error(disc + ", rotor: {inertia_axial: 1e-5}}\n", "top.rotor", "not with a rim", "point contact's full model");
+  expect_error(disc + "}\ncontact: {patch_radius: 1e-4}\n", "contact.patch_radius", "not with a rim",
+               "point contact's full model");
+  expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with a rim",
+               "constrained normal force");
 }

@@ -1,0 +1,84 @@
+// A body with a rim in the Simulator (physics.md section 13): Euler's disk's steady rolling, a dropped disc landing on
+// its rim, and the lying-flat end state.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.hpp"
+#include "top_sim/energy.hpp"
+#include "top_sim/shape_motion.hpp"
+#include "top_sim/simulator.hpp"
+
+namespace {
+
+using top_sim_test::num;
+using top_sim_test::scene_from;
+
+// A thin disc (0.4 kg, a = 0.04 m) on a level plane, its figure axis `beta` from the vertical.
+std::string disc_scene(double beta, double transverse_rate, const std::string& extra = "") {
+  return "top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, shapes: [{rim: {offset: 0, radius: 0.04}}]}\n"
+         "plane: {inclination: 0}\nfriction: {law: coulomb, mu: 0.5, static: 0.5}\n"
+         "initial: {tilt: " + num(beta) + ", spin: 0, angular_velocity_transverse: [" + num(transverse_rate) + ", 0]}\n" +
+         extra;
+}
+
+// Omega (n - c f) with the centre at rest is the transverse rate -Omega s / c along the lean (world x).
+double steady_transverse_rate(double beta, double factor) {
+  const double Omega = factor * std::sqrt(4 * 9.81 / (0.04 * std::sin(beta)));
+  return -Omega * std::sin(beta) / std::cos(beta);
+}
+
+double tilt(const top_sim::Simulator& sim) { return std::acos(top_sim::figure_axis(sim.state()).normalized().z()); }
+
+// Started in Omega^2 a sin(beta) = 4 g the disc rolls with its centre at rest at constant beta (dopri5, rtol 1e-8);
+// 5 % more Omega leaves it.
+TEST(ShapeSimulator, DiscRollsSteadilyAtFourGOverASinBeta) {
+  for (double beta : {0.3, 0.8}) {
+    top_sim::Simulator sim(scene_from(disc_scene(beta, steady_transverse_rate(beta, 1.0))));
+    ASSERT_EQ(sim.contact_mode(), top_sim::ContactMode::rolling);
+    double drift = 0.0, speed = 0.0;
+    for (int k = 1; k <= 200; ++k) {
+      sim.advance_to(0.01 * k);
+      drift = std::max(drift, std::abs(tilt(sim) - beta));
+      speed = std::max(speed, sim.snapshot().com_velocity.norm());
+    }
+    EXPECT_LT(drift, 1e-7) << beta;
+    EXPECT_LT(speed, 1e-7) << beta;
+    EXPECT_EQ(sim.mode_switch_count(), 0u);
+    EXPECT_LT(sim.max_energy_residual(), 1e-8);
+    EXPECT_EQ(sim.snapshot().gap, 0.0);  // the rim's own gap: exactly 0 in contact
+    top_sim::Simulator off(scene_from(disc_scene(beta, steady_transverse_rate(beta, 1.05))));
+    double off_drift = 0.0;
+    for (int k = 1; k <= 200; ++k) {
+      off.advance_to(0.01 * k);
+      off_drift = std::max(off_drift, std::abs(tilt(off) - beta));
+    }
+    EXPECT_GT(off_drift, 1e-3) << beta;
+  }
+}
+
+// Dropped 10 mm onto its rim with no spin: flight, a touchdown at the rim's lowest point (the impact's loss booked in
+// W_diss), then it tips over and ends lying flat: a named end, not a fault, with E + W_diss held.
+TEST(ShapeSimulator, DroppedDiscLandsOnItsRimAndEndsLyingFlat) {
+  top_sim::Simulator sim(scene_from(disc_scene(0.5, 0.0).replace(
+      disc_scene(0.5, 0.0).find("initial:"), std::string::npos, "initial: {tilt: 0.5, spin: 0, gap: 0.01}\n")));
+  ASSERT_EQ(sim.contact_mode(), top_sim::ContactMode::flight);
+  sim.advance_to(5.0);
+  EXPECT_TRUE(sim.stopped());
+  EXPECT_EQ(sim.fault(), top_sim::ContactFault::none);
+  EXPECT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
+  EXPECT_LT(sim.time(), 5.0);
+  EXPECT_NE(sim.fault_message().find("lying_flat"), std::string::npos) << sim.fault_message();
+  const top_sim::Snapshot s = sim.snapshot();
+  EXPECT_EQ(s.end_state, top_sim::EndState::lying_flat);
+  EXPECT_EQ(s.fault, top_sim::ContactFault::none);
+  EXPECT_LT(s.com.z(), 0.04 * 2e-4);  // the centre within a rim's flat tolerance of the plane
+  EXPECT_LT(sim.max_energy_residual(), 1e-7);
+  std::vector<top_sim::ModeSwitch> switches = sim.take_mode_switches();
+  ASSERT_FALSE(switches.empty());
+  EXPECT_EQ(switches.front().kind, top_sim::ModeSwitchKind::touchdown);
+  EXPECT_NEAR(switches.front().t, std::sqrt(2 * 0.01 / 9.81), 1e-9);  // free fall of 10 mm, no spin
+  EXPECT_LE(switches.front().energy_change, 0.0);
+}
+
+}  // namespace
