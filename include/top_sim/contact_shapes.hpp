@@ -25,7 +25,13 @@ struct ShapeSet {
   std::array<ContactShape, kMaxShapes> shape{};
   std::size_t count = 0;
   std::size_t touching = 0;  // the shape in contact (set by the Simulator at touchdown; unused in flight)
+  bool active = false;       // a rim or several shapes: not the tip sphere alone (set with the shapes, shapes_active)
 };
+
+// Whether `shapes` is more than the tip sphere alone; a ShapeSet built by hand sets `active` with it.
+inline bool shapes_active(const ShapeSet& shapes) {
+  return shapes.count > 1 || (shapes.count == 1 && shapes.shape[0].kind != ShapeKind::sphere);
+}
 
 // Where a shape meets the plane below it (n = e_z), relative to the centre of mass, and how that point moves.
 struct ShapePoint {

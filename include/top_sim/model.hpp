@@ -81,9 +81,7 @@ struct Model {
 
 // A body whose contact is not the tip sphere alone (a rim, or several shapes): its right-hand side, modes and
 // events are the shapes' (shape_motion.hpp); the tip sphere's stay the same to the bit.
-inline bool has_shapes(const Model& model) {
-  return model.shapes.count > 1 || (model.shapes.count == 1 && model.shapes.shape[0].kind != ShapeKind::sphere);
-}
+inline bool has_shapes(const Model& model) { return model.shapes.active; }  // one byte: every margin reads it
 
 // True when the contact is the point of sections 3-4 with no air: the right-hand side then takes the point
 // contact's code path, so every result stays the same to the bit.

@@ -75,6 +75,11 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
 // Section 9's K, b, lever and contact velocity at the touching shape's lowest point.
 ContactResponse shape_contact_response(const Model& model, const StateVector& y);
 
+// E of section 4 from the state, and the energy balance's scale: the kinetic energy and m g times the body's reach
+// from its centre of mass (energy.cpp's for a body with shapes).
+double shape_mechanical_energy(const Model& model, const StateVector& y);
+double shape_energy_scale(const Model& model, const StateVector& y);
+
 // The body's energy at centre of mass r_cm in the plane frame (section 4's E, no rotor).
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
                          const Eigen::Vector3d& w);

@@ -387,12 +387,12 @@ template <ContactModel kContact>
                                                    const StateVector& y, StateVector& dydt, ContactForceRecord* record) {
   if (contact == ContactModel::point)
     derivative_in<ContactModel::point>(model, mode, y, dydt, record);
-  else if (contact == ContactModel::shapes)
-    shape_derivative(model, mode, y, dydt, record);
   else if (contact == ContactModel::patch)
     derivative_in<ContactModel::patch>(model, mode, y, dydt, record);
-  else
+  else if (contact == ContactModel::finite)
     derivative_in<ContactModel::finite>(model, mode, y, dydt, record);
+  else
+    shape_derivative(model, mode, y, dydt, record);
 }
 
 }  // namespace
@@ -418,7 +418,7 @@ namespace {
 
 // A body with shapes: in flight the least gap of its shapes is the touchdown's margin; on a rim, the tilt's sine
 // above kFlatEndSine is the margin of the flat end (the tilt margin's slot: its event ends the run).
-void shape_margins(const Model& model, ContactMode mode, const StateVector& y, ModeMargins& mg) {
+[[gnu::noinline]] void shape_margins(const Model& model, ContactMode mode, const StateVector& y, ModeMargins& mg) {
   mg.tilt = ModeMargins::kNone;
   if (mode == ContactMode::flight) {
     for (std::size_t k = 0; k < model.shapes.count; ++k)
@@ -433,12 +433,13 @@ void shape_margins(const Model& model, ContactMode mode, const StateVector& y, M
 
 }  // namespace
 
-bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
-                         double cos_max_tilt, ModeMargins& mg) {
+namespace {
+
+[[gnu::always_inline]] inline bool contact_margins(const Model& model, ContactMode mode, const StateVector& y,
+                                                   const ContactForceRecord& r, double cos_max_tilt, ModeMargins& mg) {
   mg = ModeMargins{};
   if (mode != ContactMode::flight && model.top.com_offset != 0.0)
     mg.tilt = figure_axis(y).normalized().z() - cos_max_tilt;
-  if (has_shapes(model) && mode != ContactMode::flight) shape_margins(model, mode, y, mg);
   switch (mode) {
     case ContactMode::slipping:
       mg.lift = r.force.z();
@@ -454,10 +455,18 @@ bool margins_from_record(const Model& model, ContactMode mode, const StateVector
       return true;
     case ContactMode::flight:
       mg.lift = y[idx::gap];
-      if (has_shapes(model)) shape_margins(model, mode, y, mg);
       return true;
   }
   return false;
+}
+
+}  // namespace
+
+bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
+                         double cos_max_tilt, ModeMargins& mg) {
+  const bool complete = contact_margins(model, mode, y, r, cos_max_tilt, mg);
+  if (has_shapes(model)) [[unlikely]] shape_margins(model, mode, y, mg);  // the tilt and touchdown margins
+  return complete;
 }
 
 void model_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,

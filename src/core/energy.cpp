@@ -1,7 +1,6 @@
 // Energy balance E + W_diss (physics.md section 4).
 #include "top_sim/energy.hpp"
 
-#include <algorithm>
 #include <cmath>
 
 #include "top_sim/shape_motion.hpp"
@@ -10,7 +9,7 @@ namespace top_sim {
 
 namespace {
 // f_hat is the state's figure axis normalised (the caller's, so that it is normalised once).
-double kinetic_energy(const Model& model, const StateVector& y, const Eigen::Vector3d& f_hat) {
+[[gnu::always_inline]] inline double kinetic_energy(const Model& model, const StateVector& y, const Eigen::Vector3d& f_hat) {
   const Top& top = model.top;
   const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
   const double nu = top.has_rotor ? y[idx::nu] : 0.0;
@@ -25,9 +24,8 @@ double kinetic_energy(const Model& model, const StateVector& y, const Eigen::Vec
 }  // namespace
 
 double mechanical_energy(const Model& model, const StateVector& y) {
-  if (has_shapes(model))
-    return shape_body_energy(model, shape_body_com(model, y), shape_body_com_velocity(model, y),
-                             figure_axis(y).normalized(), angular_velocity(y));
+  if (has_shapes(model)) [[unlikely]]
+    return shape_mechanical_energy(model, y);
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const Eigen::Vector3d r_cm =
@@ -37,13 +35,8 @@ double mechanical_energy(const Model& model, const StateVector& y) {
 
 double energy_scale(const Model& model, const StateVector& y) {
   const Top& top = model.top;
-  if (has_shapes(model)) {  // the kinetic energy and m g times the body's reach from its centre of mass
-    double reach = 0.0;
-    for (std::size_t k = 0; k < model.shapes.count; ++k)
-      reach = std::max(reach, std::abs(model.shapes.shape[k].offset) + model.shapes.shape[k].radius);
-    const double potential = mechanical_energy(model, y) + top.mass * model.plane.g_plane.dot(shape_body_com(model, y));
-    return potential + top.mass * model.plane.gravity * reach;
-  }
+  if (has_shapes(model)) [[unlikely]]
+    return shape_energy_scale(model, y);
   return kinetic_energy(model, y, figure_axis(y).normalized()) +
          top.mass * model.plane.gravity * (top.tip_radius + std::abs(top.com_offset));
 }

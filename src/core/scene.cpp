@@ -236,6 +236,7 @@ ShapeSet read_shapes(Section& s, const std::string& file, Top& top) {
   for (std::size_t i = 0; i < list.size(); ++i)
     shapes.shape[i] = read_shape(list[i], file, key + "[" + std::to_string(i) + "]");
   shapes.count = list.size();
+  shapes.active = shapes_active(shapes);
   // The state's reference point (shape_motion.hpp): the first sphere's centre, else the centre of mass.
   const bool tip = shapes.shape[0].kind == ShapeKind::sphere;
   top.tip_radius = tip ? shapes.shape[0].radius : 0.0;

@@ -260,6 +260,20 @@ ContactResponse shape_contact_response(const Model& model, const StateVector& y)
   return r;
 }
 
+double shape_mechanical_energy(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  return shape_body_energy(model, shape_body_com(model, y), b.v_cm, b.f_hat, b.w);
+}
+
+double shape_energy_scale(const Model& model, const StateVector& y) {
+  double reach = 0.0;
+  for (std::size_t k = 0; k < model.shapes.count; ++k)
+    reach = std::max(reach, std::abs(model.shapes.shape[k].offset) + model.shapes.shape[k].radius);
+  const BodyView b = body_view(model, y);
+  const double kinetic = shape_body_energy(model, Eigen::Vector3d::Zero(), b.v_cm, b.f_hat, b.w);
+  return kinetic + model.top.mass * model.plane.gravity * reach;
+}
+
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm,
                          const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
   const Top& top = model.top;
