@@ -576,6 +576,12 @@ void check_shapes_at_start(const Model& model, const StateVector& y, const std::
 // beyond it has fallen: bad input, exit 2, not a fault at t = 0).
 void check_initial_state(const Scene& scene, const std::string& file) {
   const StateVector y = initial_state(scene);
+  const double c = figure_axis(y).normalized().z(), sine = std::sqrt(std::max(0.0, 1.0 - c * c));
+  for (std::size_t k = 0; k < scene.model.shapes.count; ++k)  // a rim lying flat has no lowest point to start on
+    if (scene.model.shapes.shape[k].kind == ShapeKind::rim && sine < kFlatEndSine)
+      throw SceneError(file, scene.initial.start == StartKind::tilted ? "initial.tilt" : "initial.start",
+                       "top.shapes[" + std::to_string(k) + "], a rim, starts lying flat (the tilt's sine " +
+                           fmt(sine) + " from the plane normal); must be >= " + fmt(kFlatEndSine));
   const double energy = mechanical_energy(scene.model, y);
   if (!all_finite(y) || !std::isfinite(energy))
     throw SceneError(file, "initial", "the initial energy is " + fmt(energy) +
@@ -589,8 +595,9 @@ void check_initial_state(const Scene& scene, const std::string& file) {
   check_shapes_at_start(scene.model, y, file);
 }
 
-// The Simulator steps one sphere: the tip. The core has several shapes' geometry and motion (shape_motion.hpp), but
-// no mode, event or output of theirs yet (docs/design/contact_shapes.md), so such a body is refused, not run wrong.
+// The Simulator steps a tip sphere or one rim. Several shapes at once have their motion in the core
+// (shape_motion.hpp) but no modes or events in the Simulator yet (docs/design/contact_shapes.md): refused, not run
+// wrong; so is a rim with what only the tip sphere has.
 void check_simulated_shapes(const Model& model, const std::string& file) {
   if (!has_shapes(model)) return;
   if (model.shapes.count > 1)

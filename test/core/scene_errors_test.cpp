@@ -352,6 +352,8 @@ TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   expect_error(disc + ", rotor: {inertia_axial: 1e-5}}\n", "top.rotor", "not with a rim", "point contact's full model");
   expect_error(disc + "}\ncontact: {patch_radius: 1e-4}\n", "contact.patch_radius", "not with a rim",
                "point contact's full model");
+  expect_error(disc + "}\nplane: {inclination: 0}\ninitial: {tilt: 0}\n", "initial.tilt",
+               "top.shapes[0], a rim, starts lying flat", "must be >= 1e-04");
   expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with a rim",
                "constrained normal force");
 }
