@@ -28,6 +28,7 @@ struct ShapeMotion {
   double slip = 0.0;         // s of section 3, with the contact point's own velocity v_cm + r_k' for u
   double dissipation = 0.0;  // mu N t_hat . v_t while slipping (rolling does no work), and what air takes
   double painleve = ModeMargins::kNone;  // slipping: m n . K d (the fault where <= 0)
+  ShapePoint point;                      // the lowest point it acts at, and its rate
 };
 
 // f_hat of unit length; a rim not lying flat (contact_shapes.hpp).
@@ -71,7 +72,7 @@ void retouch(Model& model, StateVector& y, std::size_t shape);
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
 // dy/dt of the body with shapes (no rotor, a point contact, air).
 void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
-                      ContactForceRecord* record);
+                      ContactForceRecord* record, ShapeMotion* motion = nullptr);
 // Section 9's K, b, lever and contact velocity at the touching shape's lowest point.
 ContactResponse shape_contact_response(const Model& model, const StateVector& y);
 

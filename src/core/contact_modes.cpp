@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "rigid_body.hpp"
-#include "top_sim/shape_motion.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -56,7 +56,8 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
   // -d omega . f_hat.
   if (has_shapes(model)) {  // gap_rate is the touching shape's n . v_k: it changes by n . (dv_cm + d omega x r_k)
-    const Eigen::Vector3d r = shape_contact_response(model, y).rho, d_omega = b.inverse_inertia(r.cross(P));
+    const Eigen::Vector3d r = shape_point(model.shapes.shape[model.shapes.touching], b.f_hat, b.w).r;
+    const Eigen::Vector3d d_omega = b.inverse_inertia(r.cross(P));
     const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
     set_velocity(y, Eigen::Vector2d(y[idx::u] + d_u.x(), y[idx::u + 1] + d_u.y()));
     y[idx::gap_rate] += (P / b.m + d_omega.cross(r)).z();

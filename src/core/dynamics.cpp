@@ -273,7 +273,9 @@ namespace {
 // A body with shapes: its touching shape's motion (shape_motion.hpp), mapped onto the Dynamics every reader uses.
 void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
   out = Dynamics{};
-  const ShapeMotion m = shape_motion(model, mode, y);
+  ShapeMotion m;
+  StateVector dydt;
+  shape_derivative(model, mode, y, dydt, nullptr, &m);  // the motion and the reference point's rates, once
   out.mu = m.mu;
   out.normal_force = m.normal_force;
   out.contact_force = m.force;
@@ -283,8 +285,6 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.dissipation = m.dissipation;
   out.contact.v_t = m.v_t;
   out.contact.slip = m.slip;
-  StateVector dydt;
-  shape_derivative(model, mode, y, dydt, nullptr);
   out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
   out.psi_dot = dydt[idx::psi];
   const ContactForceRecord record{m.force, 0.0, m.painleve};

@@ -5,9 +5,9 @@
 #include <sstream>
 
 #include "simulator_impl.hpp"
-#include "top_sim/shape_motion.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/impact.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 

@@ -1,14 +1,13 @@
 // Touchdown impact (physics.md section 9).
 #include "top_sim/impact.hpp"
 
-#include "top_sim/shape_motion.hpp"
-
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <cmath>
 
 #include "top_sim/contact.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 

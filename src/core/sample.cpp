@@ -1,8 +1,6 @@
 // The sample: what a reader sees of the committed state, analysed once on the first read (physics.md section 10).
 #include "sample.hpp"
 
-#include "top_sim/shape_motion.hpp"
-
 #include <cmath>
 #include <cstring>
 
@@ -11,6 +9,7 @@
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/orientation.hpp"
 #include "top_sim/pose.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 

@@ -81,6 +81,7 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   const Eigen::Vector3d b = response_bias(free, p, w);
   Eigen::Vector3d t_hat;
   ShapeMotion out;
+  out.point = p;
   slip_and_friction(model, v_cm, w, p, out, t_hat);
   if (mode == ContactMode::slipping) {
     out.mu = friction_coefficient(model.friction, out.slip);
@@ -218,7 +219,7 @@ ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector
 }
 
 void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
-                      ContactForceRecord* record) {
+                      ContactForceRecord* record, ShapeMotion* motion) {
   const BodyView b = body_view(model, y);
   const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
   if (record) {
@@ -230,7 +231,7 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
   const double f = model.top.com_offset;
   const Eigen::Vector3d a_m = m.a_cm - f * (m.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
   // The touching shape's gap: g_k'' = n . (a_cm + w' x r_k + w x r_k') in flight (0 in contact, by the constraint).
-  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  const ShapePoint& p = m.point;
   const double g_k_acceleration = (m.a_cm + m.omega_dot.cross(p.r) + b.w.cross(p.r_rate)).z();
   const Eigen::Vector3d f_dot = b.w.cross(figure_axis(y));  // keeps |f_hat| in the exact flow
   dydt[idx::x] = y[idx::u];
@@ -247,6 +248,7 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
   dydt[idx::gap] = mode == ContactMode::flight ? y[idx::gap_rate] : 0.0;
   dydt[idx::gap_rate] = mode == ContactMode::flight ? g_k_acceleration : 0.0;
   dydt[idx::psi] = spin_phase_rate(b.f_hat, b.w);
+  if (motion) *motion = m;
 }
 
 ContactResponse shape_contact_response(const Model& model, const StateVector& y) {
