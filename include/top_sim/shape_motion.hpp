@@ -6,6 +6,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstdint>
 
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
@@ -68,6 +69,9 @@ Eigen::Vector3d shape_body_com(const Model& model, const StateVector& y);
 Eigen::Vector3d shape_body_com_velocity(const Model& model, const StateVector& y);
 // Makes `shape` the touching one: the state's gap and gap_rate become its own (the body does not move).
 void retouch(Model& model, StateVector& y, std::size_t shape);
+// Snapshot::touching: bit i set while shape i of top.shapes touches (a body without shapes: its tip sphere, bit 0);
+// none in flight.
+std::uint32_t touching_shapes(const Model& model, ContactMode mode);
 // The touching shape's motion in `mode` at the state y.
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
 // dy/dt of the body with shapes (no rotor, a point contact, air).

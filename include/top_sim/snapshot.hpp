@@ -3,6 +3,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
+#include <cstdint>
 #include <string>
 
 #include "top_sim/contact.hpp"
@@ -42,7 +43,8 @@ struct Snapshot {
   RegimeIndicators indicators;
   Regime regime = Regime::nutating;
   ContactMode contact_mode = ContactMode::slipping;  // physics.md section 9, separate from the regime
-  double gap = 0.0;               // height of the tip sphere above the plane [m], 0 in contact
+  double gap = 0.0;               // height of the touching shape above the plane [m], 0 in contact
+  std::uint32_t touching = 0;     // bit i: shape i of top.shapes touches (the tip sphere is shape 0); 0 in flight
   double energy = 0.0;
   double dissipated_work = 0.0;
   double energy_balance_residual = 0.0;

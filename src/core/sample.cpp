@@ -135,6 +135,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.alpha = pose.alpha;
   s.contact_mode = mode;
   s.gap = y[idx::gap];
+  s.touching = touching_shapes(model, mode);
   s.tip_center = pose.tip_center;
   s.com = pose.com;
   s.orientation = pose.orientation;

@@ -213,6 +213,11 @@ std::size_t lowest_shape(const Model& model, const StateVector& y) {
   return lowest_shape(model.shapes, figure_axis(y).normalized());
 }
 
+std::uint32_t touching_shapes(const Model& model, ContactMode mode) {
+  if (mode == ContactMode::flight) return 0;
+  return has_shapes(model) ? std::uint32_t{1} << model.shapes.touching : 1;
+}
+
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y) {
   const BodyView b = body_view(model, y);
   return shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
