@@ -72,6 +72,9 @@ void retouch(Model& model, StateVector& y, std::size_t shape);
 // Snapshot::touching: bit i set while shape i of top.shapes touches (a body without shapes: its tip sphere, bit 0);
 // none in flight.
 std::uint32_t touching_shapes(const Model& model, ContactMode mode);
+// The touching shape's contact kinematics at the state y (v_t, t_hat, rolling speed, slip; contact.hpp's for the tip
+// sphere): the stiff slip-onset layer and the Jacobian's difference steps read the contact's slip from here.
+ContactKinematics shape_kinematics(const Model& model, const StateVector& y);
 // The touching shape's motion in `mode` at the state y.
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
 // dy/dt of the body with shapes (no rotor, a point contact, air).

@@ -407,10 +407,13 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
   // Nothing depends on the gap; in contact nothing depends on the gap rate either.
   max_step[idx::gap] = -1.0;
   if (mode != ContactMode::flight) max_step[idx::gap_rate] = -1.0;
-  const ContactKinematics k = contact_kinematics(model, in_plane_velocity(y), angular_velocity(y));
+  const bool shapes = has_shapes(model);
+  const ContactKinematics k = shapes ? shape_kinematics(model, y)
+                                     : contact_kinematics(model, in_plane_velocity(y), angular_velocity(y));
   const double width = 1e-4 * std::max(k.v_t.norm(), model.regularization_speed);
   max_step[idx::u] = max_step[idx::u + 1] = width;
-  const double R = model.top.tip_radius;
+  const ContactShape& touching = model.shapes.shape[model.shapes.touching];  // v_t = v_cm + w x r_k, |r_k| <= reach
+  const double R = shapes ? std::abs(touching.offset) + touching.radius : model.top.tip_radius;
   if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
 }
 

@@ -213,6 +213,19 @@ std::size_t lowest_shape(const Model& model, const StateVector& y) {
   return lowest_shape(model.shapes, figure_axis(y).normalized());
 }
 
+ContactKinematics shape_kinematics(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const ShapePoint p = shape_point(touching_shape(model), b.f_hat, b.w);
+  ShapeMotion m;
+  ContactKinematics k;
+  slip_and_friction(model, b.v_cm, b.w, p, m, k.t_hat);
+  const Eigen::Vector3d rolling = p.r_rate - b.w.cross(p.r);
+  k.v_t = m.v_t;
+  k.slip = m.slip;
+  k.rolling_speed = std::hypot(rolling.x(), rolling.y());
+  return k;
+}
+
 std::uint32_t touching_shapes(const Model& model, ContactMode mode) {
   if (mode == ContactMode::flight) return 0;
   return has_shapes(model) ? std::uint32_t{1} << model.shapes.touching : 1;

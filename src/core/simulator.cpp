@@ -8,6 +8,7 @@
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/angular_momentum.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -126,6 +127,11 @@ void SimulatorImpl::commit(const StateVector& y, double t) {
 
 bool SimulatorImpl::in_stiff_layer(const StateVector& y, bool inside) const {
   if (mode_ != ContactMode::slipping || model_.kind != ModelKind::full) return false;
+  if (has_shapes(model_)) [[unlikely]] {  // the touching shape's slip, not the tip sphere's
+    const ContactKinematics k = shape_kinematics(model_, y);
+    return k.v_t.norm() < (inside ? 2.0 : 1.0) * layer_width_ &&
+           (layer_kink_at_rest_ || friction_coefficient(model_.friction, k.slip) > 0.0);
+  }
   const double speed = contact_velocity(model_, in_plane_velocity(y), angular_velocity(y)).norm();
   if (!(speed < (inside ? 2.0 : 1.0) * layer_width_)) return false;
   // A kink at v_t = 0 needs friction there: mu(0) > 0, or a slip near 1 (no rolling: a point tip, no spin).

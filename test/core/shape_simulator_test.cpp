@@ -81,4 +81,26 @@ TEST(ShapeSimulator, DroppedDiscLandsOnItsRimAndEndsLyingFlat) {
   EXPECT_LE(switches.front().energy_change, 0.0);
 }
 
+// Air slows the steady disc until the rolling force reaches the static cone (mu_s = 0.3, at 0.28 s): it slips and
+// sticks again, but never rolls outside the cone (a stick whose stuck state would leave it is refused), and the
+// slip's onset layer is crossed by rosenbrock4 at the rim's own slip, not the tip sphere's. The snapshot's touching
+// bit is the rim's while it touches.
+TEST(ShapeSimulator, RollingStaysInsideTheStaticConeAsAirSlowsTheDisc) {
+  std::string text = disc_scene(0.5, steady_transverse_rate(0.5, 1.0), "air: {drag: 0.01, spin_drag: 3.0e-4}\n");
+  text.replace(text.find("mu: 0.5, static: 0.5"), 20, "mu: 0.3, static: 0.3");
+  top_sim::Simulator sim(scene_from(text));
+  double rolling_mu = 0.0;
+  for (int k = 1; k <= 120; ++k) {
+    sim.advance_to(0.005 * k);
+    const top_sim::Snapshot s = sim.snapshot();
+    EXPECT_EQ(s.touching, 1u);
+    if (s.contact_mode == top_sim::ContactMode::rolling) rolling_mu = std::max(rolling_mu, s.mu);
+  }
+  EXPECT_GT(sim.mode_switch_count(), 0u);  // it did reach the cone
+  EXPECT_LE(rolling_mu, 0.3 * (1.0 + 1e-9));
+  EXPECT_GT(rolling_mu, 0.29);
+  EXPECT_GT(sim.layer_steps(), 0u);
+  EXPECT_LT(sim.max_energy_residual(), 1e-7);
+}
+
 }  // namespace
