@@ -43,6 +43,13 @@ struct Air {
 // omega_eps of the rolling resistance's regularisation [rad/s]: far below any rolling rate a user watches.
 constexpr double kRollingRateEps = 1.0e-6;
 
+// Rolling resistance per newton of normal force: -delta omega_r / sqrt(|omega_r|^2 + omega_eps^2), omega_r the part
+// of omega in the plane (n = e_z).
+inline Eigen::Vector3d rolling_resistance_per_newton(double delta, const Eigen::Vector3d& w) {
+  const Eigen::Vector3d w_r(w.x(), w.y(), 0.0);
+  return -delta / std::sqrt(w_r.squaredNorm() + kRollingRateEps * kRollingRateEps) * w_r;
+}
+
 // 1/E* = (1 - nu_t^2)/E_t + (1 - nu_p^2)/E_p.
 double effective_modulus(const Material& top, const Material& plane);
 

@@ -105,7 +105,9 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
     const ContactResponse r = contact_response(model, y);
     double v_t = std::hypot(r.v_c.x(), r.v_c.y());
     bool holds;
-    if (point_contact(model) || has_shapes(model)) {
+    if (has_shapes(model)) {
+      holds = rolling_consistent(shape_motion(model, ContactMode::rolling, y).force, mu_s);
+    } else if (point_contact(model)) {
       holds = rolling_consistent(rolling_force(r), mu_s);
     } else {  // physics.md section 12: the generalised slip must be small and the stick set must hold
       const StickForce st = stick_force(model, y);

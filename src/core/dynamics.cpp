@@ -72,8 +72,7 @@ void add_air(const Model& model, detail::RigidBody& b, ContactDynamics& out) {
 Eigen::Vector3d rolling_resistance_per_newton(const Model& model, const detail::RigidBody& b) {
   const double delta = model.finite_contact.rolling_resistance;
   if (delta == 0.0) return Eigen::Vector3d::Zero();
-  const Eigen::Vector3d w_r(b.w.x(), b.w.y(), 0.0);
-  return -delta / std::sqrt(w_r.squaredNorm() + kRollingRateEps * kRollingRateEps) * w_r;
+  return top_sim::rolling_resistance_per_newton(delta, b.w);
 }
 
 // The coupled law of section 12 per newton of normal force at lever Rbar: F / N = -force_per_speed v_t and
@@ -289,7 +288,7 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.psi_dot = dydt[idx::psi];
   const ContactForceRecord record{m.force, 0.0, m.painleve};
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
-  const Eigen::Vector3d F = rolling_force(shape_contact_response(model, y));
+  const Eigen::Vector3d F = shape_motion(model, ContactMode::rolling, y).force;  // with its rolling resistance
   const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);
   out.margins.transfer = std::max(m.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
 }

@@ -606,13 +606,12 @@ void check_simulated_shapes(const Model& model, const std::string& file) {
   // A rim's body runs the point contact's full model for now: the rest is the tip sphere's alone.
   const char* refused = model.top.has_rotor                                     ? "top.rotor"
                         : model.finite_contact.has_patch()                       ? "contact.patch_radius"
-                        : model.finite_contact.rolling_resistance != 0.0         ? "contact.rolling_resistance"
                         : model.kind != ModelKind::full || model.automatic.enabled ? "model.kind"
                         : model.normal_force != NormalForceModel::constrained    ? "model.normal_force"
                                                                                  : nullptr;
   if (refused)
     throw SceneError(file, refused, "not with a rim in top.shapes yet (a rim runs the point contact's full model, "
-                                    "with air, and the constrained normal force)");
+                                    "with air, rolling resistance and the constrained normal force)");
 }
 
 }  // namespace

@@ -3,11 +3,13 @@
 #include "top_sim/shape_motion.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/Geometry>
+#include <Eigen/LU>
 #include <Eigen/QR>
 #include <algorithm>
-#include <Eigen/Geometry>
 #include <cmath>
 
+#include "top_sim/finite_contact.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/orientation.hpp"
 
@@ -83,22 +85,27 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   ShapeMotion out;
   out.point = p;
   slip_and_friction(model, v_cm, w, p, out, t_hat);
+  // Rolling resistance (section 12): the couple N tau_r adds -r x I^-1 tau_r to d/dt v_k per newton of N.
+  const double delta = mode == ContactMode::flight ? 0.0 : model.finite_contact.rolling_resistance;
+  const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
+  Eigen::Matrix3d K = cross_response(top, f_hat, p.r, p.r);
+  if (delta > 0.0) K.col(2) -= p.r.cross(inverse_inertia(top, f_hat, tau_r));
   if (mode == ContactMode::slipping) {
     out.mu = friction_coefficient(model.friction, out.slip);
     const Eigen::Vector3d d = Eigen::Vector3d::UnitZ() - out.mu * t_hat;
-    const double n_Kd = cross_response(top, f_hat, p.r, p.r).row(2).dot(d);
+    const double n_Kd = K.row(2).dot(d);
     out.painleve = top.mass * n_Kd;
     out.normal_force = b.z() / n_Kd;
     out.force = out.normal_force * d;
     out.dissipation = out.mu * out.normal_force * t_hat.dot(out.v_t);
   } else if (mode == ContactMode::rolling) {
-    out.force = cross_response(top, f_hat, p.r, p.r).llt().solve(b);
+    out.force = delta > 0.0 ? Eigen::Vector3d(K.partialPivLu().solve(b)) : Eigen::Vector3d(K.llt().solve(b));
     out.normal_force = out.force.z();
     out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
   }
   out.a_cm = free.g + out.force / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force)) - free.Ii_G;
-  out.dissipation += free.air_power;
+  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force) + out.normal_force * tau_r) - free.Ii_G;
+  out.dissipation += free.air_power - out.normal_force * tau_r.dot(w);
   return out;
 }
 

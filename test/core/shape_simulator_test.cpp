@@ -103,4 +103,23 @@ TEST(ShapeSimulator, RollingStaysInsideTheStaticConeAsAirSlowsTheDisc) {
   EXPECT_LT(sim.max_energy_residual(), 1e-7);
 }
 
+// Rolling resistance on a rim (physics.md section 12, delta [m]): the steady disc (N = m g) loses energy at
+// delta m g |omega_r| at first, the energy it loses is booked in W_diss, and it sinks (beta falls).
+TEST(ShapeSimulator, RollingResistanceTakesDeltaMgOmegaFromTheRollingDisc) {
+  const double beta = 0.5, delta = 1.0e-4, dt = 1.0e-3;
+  top_sim::Simulator sim(scene_from(disc_scene(beta, steady_transverse_rate(beta, 1.0),
+                                               "contact: {rolling_resistance: " + num(delta) + "}\n")));
+  ASSERT_EQ(sim.contact_mode(), top_sim::ContactMode::rolling);
+  const top_sim::Snapshot s0 = sim.snapshot();
+  const double omega_r = std::hypot(s0.angular_velocity.x(), s0.angular_velocity.y());
+  sim.advance_to(dt);
+  const double rate = (s0.energy - sim.snapshot().energy) / dt;
+  EXPECT_NEAR(rate, delta * 0.4 * 9.81 * omega_r, 1e-3 * rate);
+  EXPECT_NEAR(sim.snapshot().dissipated_work, s0.energy - sim.snapshot().energy, 1e-9 * s0.energy);
+  sim.advance_to(1.0);
+  EXPECT_LT(tilt(sim), beta - 1e-3);
+  EXPECT_EQ(sim.fault(), top_sim::ContactFault::none);
+  EXPECT_LT(sim.max_energy_residual(), 1e-8);
+}
+
 }  // namespace
