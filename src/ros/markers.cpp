@@ -38,7 +38,7 @@ constexpr Rgb kPlaneColour{0.25f, 0.30f, 0.45f};  // a dark blue: light label te
 constexpr float kPlaneAlpha = 0.6f;
 constexpr Rgb kRvizBackground{48.0f / 255.0f, 48.0f / 255.0f, 48.0f / 255.0f};  // rviz/top_sim.rviz
 constexpr Rgb kTrailColour{1.0f, 0.78f, 0.0f};
-constexpr Rgb kTouchingColour{1.0f, 0.1f, 0.1f};  // red like the tip sphere: where the body meets the plane
+constexpr Rgb kTouchingColour{1.0f, 1.0f, 1.0f};  // white: none of the regimes' or modes' colours
 
 visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
                                   int type, Rgb c) {

@@ -69,7 +69,7 @@ void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);
 
 // The same for a body that may have contact shapes (model.shapes, physics.md section 13): with `shapes.active` the
-// body is drawn from its shapes (top_mesh.hpp, shape_mesh), the touching one(s) in red in namespace "touching" after
+// body is drawn from its shapes (top_mesh.hpp, shape_mesh), the touching one(s) in white in namespace "touching" after
 // Snapshot::touching, and no tip sphere or stem; without, exactly the markers above.
 void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
                    const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,

@@ -160,10 +160,11 @@ ShapeMesh shape_mesh(const top_sim::Top& top, const top_sim::ShapeSet& shapes, s
     } else {
       const bool up = shapes.count == 1 ? rim_up : k > 0;
       z = rim_faces(s, rim_thickness(top, shapes, i), up);
-      const double r = s.radius;
-      append(mesh.body, revolve({{0.0, z.first}, {r, z.first}}, segments, 0.0, 2.0 * M_PI));
-      append(touches ? mesh.touching : mesh.body, revolve({{r, z.first}, {r, z.second}}, segments, 0.0, 2.0 * M_PI));
-      append(mesh.body, revolve({{r, z.second}, {0.0, z.second}}, segments, 0.0, 2.0 * M_PI));
+      const double r = s.radius, tyre = (1.0 - kTyre) * r;
+      append(mesh.body, revolve({{0.0, z.first}, {tyre, z.first}}, segments, 0.0, 2.0 * M_PI));
+      append(touches ? mesh.touching : mesh.body,
+             revolve({{tyre, z.first}, {r, z.first}, {r, z.second}, {tyre, z.second}}, segments, 0.0, 2.0 * M_PI));
+      append(mesh.body, revolve({{tyre, z.second}, {0.0, z.second}}, segments, 0.0, 2.0 * M_PI));
     }
     if (s.radius > shapes.shape[widest].radius || k == 0) widest = i, widest_z = z;
     if (k == 0) continue;

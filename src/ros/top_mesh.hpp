@@ -46,12 +46,15 @@ std::vector<Eigen::Vector2d> raised_profile(const std::vector<Eigen::Vector2d>& 
 // The drawn thickness of the rims [m]: a lone rim (a disc) as the uniform cylinder of the body's inertias,
 // I_d = m (rho^2 / 4 + t^2 / 12), where that gives t > 0; else (a thin disc, a crown) kThinRim rho.
 constexpr double kThinRim = 0.05;
+// A rim's tyre: its edge band and the outer kTyre of its radius on both faces, one piece (highlighted when touching:
+// a disc's edge alone is a few pixels wide at rviz's usual distances).
+constexpr double kTyre = 0.12;
 double rim_thickness(const top_sim::Top& top, const top_sim::ShapeSet& shapes, std::size_t i);
 
 // Triangles in the top frame (z = figure axis, origin at the centre of mass), counter-clockwise from outside.
 struct ShapeMesh {
   std::vector<Eigen::Vector3d> body;      // the shapes not touching, the rims' faces, the joins between shapes
-  std::vector<Eigen::Vector3d> touching;  // the touching shapes: a sphere whole, a rim its edge band
+  std::vector<Eigen::Vector3d> touching;  // the touching shapes: a sphere whole, a rim its tyre (below)
   std::vector<Eigen::Vector3d> stripe;    // a band on the widest shape, painted: the spin shows as its turning
 };
 

@@ -738,7 +738,7 @@ Eigen::Vector3d in_plane(const top_sim::Snapshot& s, const geometry_msgs::Point&
   return s.com + s.orientation.normalized() * Eigen::Vector3d(p.x, p.y, p.z);
 }
 
-// The circle the touching band's lower edge draws (its points at the least top-frame z), in the plane frame:
+// The circle the touching tyre's edge draws (its outermost points at the least or greatest top-frame z), plane frame:
 // centre, unit normal (the top frame's z) and radius; every point of the edge checked on it to 1e-12 m.
 struct Ring {
   Eigen::Vector3d centre, normal;
@@ -747,10 +747,13 @@ struct Ring {
 Ring drawn_ring(const top_sim::Snapshot& s, const visualization_msgs::Marker& band, bool lower) {
   double z = lower ? INFINITY : -INFINITY;
   for (const auto& p : band.points) z = lower ? std::min(z, p.z) : std::max(z, p.z);
+  double outer = 0.0;  // the tyre's face at that z reaches in from the edge: the edge is its outermost circle
+  for (const auto& p : band.points)
+    if (p.z == z) outer = std::max(outer, std::hypot(p.x, p.y));
   Eigen::Vector3d sum = Eigen::Vector3d::Zero();
   std::vector<Eigen::Vector3d> edge;
   for (const auto& p : band.points)
-    if (p.z == z) edge.emplace_back(p.x, p.y, p.z);
+    if (p.z == z && std::hypot(p.x, p.y) > outer - 1e-12) edge.emplace_back(p.x, p.y, p.z);
   for (const auto& p : edge) sum += p;
   Ring r;
   const Eigen::Vector3d centre = sum / static_cast<double>(edge.size());
@@ -823,7 +826,7 @@ TEST(ShapeMarkers, DroppedDiscLiesFlatOnThePlaneAtItsEnd) {
   EXPECT_NEAR(highest, t, 1e-5) << "lying flat: the drawn disc from the plane up to its thickness";
 }
 
-// The highlight follows Snapshot::touching: the touching shapes in red (a sphere whole, a rim's edge band), the
+// The highlight follows Snapshot::touching: the touching shapes in white (a sphere whole, a rim's tyre), the
 // others in the body's colour, nothing highlighted in flight. A top of tip sphere and crown rim, built by hand.
 TEST(ShapeMarkers, TouchingHighlightFollowsTouching) {
   top_sim::Top top = small_top();
@@ -850,14 +853,14 @@ TEST(ShapeMarkers, TouchingHighlightFollowsTouching) {
       continue;
     }
     ASSERT_EQ(lit.action, visualization_msgs::Marker::ADD) << touching;
-    EXPECT_GT(lit.color.r, 0.9f);
-    EXPECT_LT(lit.color.g, 0.2f);
+    EXPECT_FALSE(same(lit.color, find_marker_or_fail(a, "body").color)) << "the highlight stands out";
     bool on_tip = false, on_crown = false;
     for (const auto& p : lit.points) {
       const Eigen::Vector3d q(p.x, p.y, p.z);
       const bool tip = std::abs((q - Eigen::Vector3d(0, 0, -0.010)).norm() - 1.5e-3) < 1e-12;
-      const bool crown = std::abs(std::hypot(q.x(), q.y()) - 0.02) < 1e-12 && q.z() >= 0.004 - 1e-12 &&
-                         q.z() <= 0.004 + t + 1e-12;
+      const double r = std::hypot(q.x(), q.y());  // the crown's tyre: its edge and the outer kTyre of its faces
+      const bool crown = r > (1.0 - top_sim_ros::kTyre) * 0.02 - 1e-12 && r < 0.02 + 1e-12 &&
+                         q.z() >= 0.004 - 1e-12 && q.z() <= 0.004 + t + 1e-12;
       EXPECT_TRUE(tip || crown) << "a highlighted point on neither shape: " << q.transpose();
       on_tip |= tip;
       on_crown |= crown;
