@@ -297,7 +297,10 @@ std::string status_text(const std::string& name, const top_sim::Snapshot& s, con
     std::snprintf(numbers, sizeof numbers, "phi %.3f / phi* %.3f", s.phi, s.phi_star);
   else
     std::snprintf(numbers, sizeof numbers, "phi %.3f", s.phi);
-  text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
+  if (s.end_state != top_sim::EndState::none)  // the run has stopped there: the regime would read as still going on
+    text += std::string("end: ") + top_sim::to_string(s.end_state) + line_break;
+  else
+    text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
   return text + numbers + ", v " + speed_text(speed_on_plane(s)) + finite_contact_text(s, line_break);
 }
 

@@ -905,3 +905,13 @@ TEST(ShapeMarkers, TipSphereAloneIsTheOrdinaryTop) {
                   a.markers[i].points[k].z == b.markers[i].points[k].z) << a.markers[i].ns << " point " << k;
   }
 }
+
+// The dropped disc at its end: the label says the end state where a running top has its regime and mode.
+TEST(ShapeMarkers, LabelShowsTheEndState) {
+  top_sim::Simulator sim(disc_fixture("disc_dropped.yaml"));
+  EXPECT_EQ(top_sim_ros::status_text("d", sim.snapshot()).find("end:"), std::string::npos) << "running";
+  sim.advance_to(5.0);
+  ASSERT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
+  const std::string text = top_sim_ros::status_text("d", sim.snapshot(), "\n");
+  EXPECT_EQ(text.rfind("d: end: lying_flat\nphi ", 0), 0u) << text;
+}
