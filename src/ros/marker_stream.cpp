@@ -42,11 +42,12 @@ visualization_msgs::Marker deletion(const std::string& ns, int id, const std::st
 void MarkerStream::collect(const top_sim::Snapshot& s, const top_sim::Top& top, const Trail& trail,
                            const Frames& frames, const MarkerStyle& style, const std::string& prefix,
                            const MarkerTick& tick, visualization_msgs::MarkerArray& out) {
-  const FixedKey key{body_colour(s, style.color_by), style.grid_pitch, top.mass, top.inertia_axial, top.tip_radius,
-                     top.com_offset};
+  FixedKey key{body_colour(s, style.color_by), style.grid_pitch, top.mass, top.inertia_axial, top.tip_radius,
+               top.com_offset};
+  if (shapes_.active) key.touching = s.touching, key.rim_up = s.figure_axis.z() >= 0.0;
   visualization_msgs::MarkerArray drawn;
   if (!(key == fixed_sent_) || tick.wall - fixed_wall_ >= tick.refresh) {
-    fixed_markers(s, top, tick.stamp, frames, style, drawn);
+    fixed_markers(s, top, shapes_, tick.stamp, frames, style, drawn);
     fixed_sent_ = key;
     fixed_wall_ = tick.wall;
   }
@@ -67,7 +68,7 @@ void MarkerStream::collect_moving(const top_sim::Snapshot& s, const top_sim::Top
                                   const MarkerStyle& style, const std::string& prefix, const MarkerTick& tick,
                                   visualization_msgs::MarkerArray& out) {
   visualization_msgs::MarkerArray drawn;
-  moving_markers(s, top, tick.stamp, frames, style, drawn);
+  moving_markers(s, top, shapes_, tick.stamp, frames, style, drawn);
   const bool refresh = tick.wall - moving_wall_ >= tick.refresh;
   if (refresh) moving_wall_ = tick.wall;
   moving_sent_.resize(drawn.markers.size());
@@ -115,7 +116,7 @@ void MarkerStream::remove_all(const top_sim::Snapshot& s, const top_sim::Top& to
                               const MarkerStyle& style, const std::string& prefix, const ros::Time& stamp,
                               visualization_msgs::MarkerArray& out) {
   visualization_msgs::MarkerArray drawn;
-  to_markers(s, top, stamp, frames, style, drawn);
+  to_markers(s, top, shapes_, stamp, frames, style, drawn);
   for (auto& m : drawn.markers) out.markers.push_back(deletion(prefix + m.ns, m.id, m.header.frame_id, stamp));
   for (const auto& [id, version] : chunks_sent_)
     out.markers.push_back(deletion(prefix + "trail", static_cast<int>(id), frames.plane, stamp));

@@ -42,6 +42,9 @@ class MarkerStream {
   void remove_all(const top_sim::Snapshot& s, const top_sim::Top& top, const Frames& frames, const MarkerStyle& style,
                   const std::string& prefix, const ros::Time& stamp, visualization_msgs::MarkerArray& out);
   void resend_all();  // a new subscriber: everything goes out at the next tick
+  // The body's contact shapes (model.shapes), drawn in place of the ordinary top when active; fixed for the top's
+  // life (no command changes them), so set once where the top's simulator is made.
+  void set_shapes(const top_sim::ShapeSet& shapes) { shapes_ = shapes; }
 
   // The grid's pitch, coarser as the contact point moves faster (grid_pitch_for); the grid's tf frame uses it.
   double grid_pitch() const { return pitch_; }
@@ -51,9 +54,11 @@ class MarkerStream {
   struct FixedKey {
     Rgb colour{0.0f, 0.0f, 0.0f};
     double pitch = 0.0, mass = 0.0, inertia = 0.0, radius = 0.0, offset = 0.0;
+    std::uint32_t touching = 0;  // a body with shapes: the touching ones, and which side a lone rim is drawn on
+    bool rim_up = false;
     bool operator==(const FixedKey& o) const {
       return colour == o.colour && pitch == o.pitch && mass == o.mass && inertia == o.inertia &&
-             radius == o.radius && offset == o.offset;
+             radius == o.radius && offset == o.offset && touching == o.touching && rim_up == o.rim_up;
     }
   };
   void collect_moving(const top_sim::Snapshot& s, const top_sim::Top& top, const Frames& frames,
@@ -63,6 +68,7 @@ class MarkerStream {
                      visualization_msgs::MarkerArray& out);
 
   double pitch_ = 0.0;  // set by follow_speed before the first tick (StateOutput::open)
+  top_sim::ShapeSet shapes_;  // none active: the ordinary top
   FixedKey fixed_sent_;
   double fixed_wall_ = -std::numeric_limits<double>::infinity();
   std::vector<visualization_msgs::Marker> moving_sent_;  // the arrows and label as last sent

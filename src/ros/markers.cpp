@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <utility>
+#include <vector>
 
 #include "control_layout.hpp"
 #include "top_mesh.hpp"
@@ -24,6 +26,7 @@ enum MarkerId : int {
   kLabelMarker,
   kGridMarker,
   kTrailHeadMarker,
+  kTouchingMarker,
 };
 
 constexpr int kBodySegments = 32;        // facets round the body: smooth at rviz's usual distances
@@ -35,6 +38,7 @@ constexpr Rgb kPlaneColour{0.25f, 0.30f, 0.45f};  // a dark blue: light label te
 constexpr float kPlaneAlpha = 0.6f;
 constexpr Rgb kRvizBackground{48.0f / 255.0f, 48.0f / 255.0f, 48.0f / 255.0f};  // rviz/top_sim.rviz
 constexpr Rgb kTrailColour{1.0f, 0.78f, 0.0f};
+constexpr Rgb kTouchingColour{1.0f, 1.0f, 1.0f};  // white: none of the regimes' or modes' colours
 
 visualization_msgs::Marker marker(const std::string& frame, const ros::Time& stamp, const std::string& ns, int id,
                                   int type, Rgb c) {
@@ -138,6 +142,31 @@ void add_tip(const top_sim::Snapshot& s, const top_sim::Top& top, const std::str
   out.markers.push_back(tip);
 }
 
+// A body with contact shapes (top.shapes), all in the top frame: the body from its shapes in `colour`, the touching
+// shape(s) in kTouchingColour (nothing in flight), a stripe on the widest shape; no tip sphere and no stem.
+void add_shape_body(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes, Rgb colour,
+                    const std::string& frame, const ros::Time& stamp, visualization_msgs::MarkerArray& out) {
+  using visualization_msgs::Marker;
+  // A lone rim's drawn thickness on the side away from the plane: f_hat up, towards +z of the top frame.
+  const ShapeMesh mesh =
+      shape_mesh(top, shapes, s.touching, s.figure_axis.z() >= 0.0, kBodySegments, kStripeWidth, kStripeRaise);
+  auto triangles = [&](const char* ns, int id, Rgb c, const std::vector<Eigen::Vector3d>& points) {
+    Marker m = marker(frame, stamp, ns, id, Marker::TRIANGLE_LIST, c);
+    m.scale.x = m.scale.y = m.scale.z = 1.0;
+    for (const Eigen::Vector3d& p : points) m.points.push_back(point(p));
+    if (m.points.empty()) m.action = Marker::DELETE;  // in flight: no shape touches
+    out.markers.push_back(m);
+  };
+  triangles("body", kBodyMarker, colour, mesh.body);
+  triangles("touching", kTouchingMarker, kTouchingColour, mesh.touching);
+  triangles("stripe", kStripeMarker, {1.0f, 0.5f, 0.0f}, mesh.stripe);
+  for (const auto& [ns, id] : {std::make_pair("tip", kTipMarker), std::make_pair("stem", kStemMarker)}) {
+    Marker gone = marker(frame, stamp, ns, id, Marker::SPHERE, colour);
+    gone.action = Marker::DELETE;  // an ordinary top's parts: none on a body drawn from its shapes
+    out.markers.push_back(gone);
+  }
+}
+
 // The spin arrow in the top frame, fixed to the body: along +f_hat for positive spin, -f_hat for negative.
 visualization_msgs::Marker spin_marker(const top_sim::Snapshot& s, const std::string& frame, const ros::Time& stamp) {
   using visualization_msgs::Marker;
@@ -151,7 +180,7 @@ visualization_msgs::Marker spin_marker(const top_sim::Snapshot& s, const std::st
 
 // Velocity arrow and label in the contact frame (origin at the contact point, plane axes): they move with the
 // top at the tf rate and keep their direction on the plane. The label sits above the top and above the controls.
-void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, const MarkerStyle& style, Rgb colour,
+void add_contact_markers(const top_sim::Snapshot& s, double body_top, const MarkerStyle& style, Rgb colour,
                          const std::string& frame, const ros::Time& stamp, visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   Marker vel = marker(frame, stamp, "velocity", kVelocityMarker, Marker::ARROW, {0.1f, 0.8f, 0.2f});
@@ -162,7 +191,7 @@ void add_contact_markers(const top_sim::Snapshot& s, const TopShape& shape, cons
   out.markers.push_back(vel);
 
   Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, readable(colour));
-  const double above_top = (s.com - s.contact_point).z() + shape.stem_top + 0.02;
+  const double above_top = (s.com - s.contact_point).z() + body_top + 0.02;
   label.text = status_text(style.name, s, "\n");
   const double lines = 1.0 + static_cast<double>(std::count(label.text.begin(), label.text.end(), '\n'));
   // Centred text: half its height above the controls keeps its lowest line clear of them.
@@ -268,28 +297,54 @@ std::string status_text(const std::string& name, const top_sim::Snapshot& s, con
     std::snprintf(numbers, sizeof numbers, "phi %.3f / phi* %.3f", s.phi, s.phi_star);
   else
     std::snprintf(numbers, sizeof numbers, "phi %.3f", s.phi);
-  text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
+  if (s.end_state != top_sim::EndState::none)  // the run has stopped there: the regime would read as still going on
+    text += std::string("end: ") + top_sim::to_string(s.end_state) + line_break;
+  else
+    text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
   return text + numbers + ", v " + speed_text(speed_on_plane(s)) + finite_contact_text(s, line_break);
 }
 
-void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
-                   const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
+void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                   const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                   visualization_msgs::MarkerArray& out) {
   add_plane(frames, stamp, style, out);
+  if (shapes.active) {
+    add_shape_body(s, top, shapes, body_colour(s, style.color_by), frames.top, stamp, out);
+    return;
+  }
   add_body(top_shape(top), body_colour(s, style.color_by), frames.top, stamp, out);
   add_tip(s, top, frames.top, stamp, out);
 }
 
+void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                    const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                    visualization_msgs::MarkerArray& out) {
+  out.markers.push_back(spin_marker(s, frames.top, stamp));
+  const double body_top = shapes.active ? shape_reach(top, shapes) : top_shape(top).stem_top;
+  add_contact_markers(s, body_top, style, body_colour(s, style.color_by), frames.contact, stamp, out);
+}
+
+void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                visualization_msgs::MarkerArray& out) {
+  out.markers.clear();
+  fixed_markers(s, top, shapes, stamp, frames, style, out);
+  moving_markers(s, top, shapes, stamp, frames, style, out);
+}
+
+void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
+                   const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
+  fixed_markers(s, top, top_sim::ShapeSet(), stamp, frames, style, out);
+}
+
 void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                     const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
-  out.markers.push_back(spin_marker(s, frames.top, stamp));
-  add_contact_markers(s, top_shape(top), style, body_colour(s, style.color_by), frames.contact, stamp, out);
+  moving_markers(s, top, top_sim::ShapeSet(), stamp, frames, style, out);
 }
 
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out) {
-  out.markers.clear();
-  fixed_markers(s, top, stamp, frames, style, out);
-  moving_markers(s, top, stamp, frames, style, out);
+  to_markers(s, top, top_sim::ShapeSet(), stamp, frames, style, out);
 }
 
 visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const ros::Time& stamp,

@@ -37,7 +37,8 @@ Rgb readable(Rgb c, double ratio = 4.5);
 
 // A top's state in words: "NAME: regime, contact mode" and "phi 0.270 / phi* 0.270, v 1.2 mm/s" (phi* when the
 // snapshot has a stationary state, v the contact point's speed on the plane), joined by `line_break` (the label
-// above a top: "\n"); a faulted top shows its fault instead.
+// above a top: "\n"); a faulted top shows its fault instead, a top at its end ("end: lying_flat") that in place
+// of regime and mode.
 std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break = ", ");
 
 // The contact point's speed along the plane [m/s]: the centre of mass's velocity without its normal part.
@@ -67,6 +68,19 @@ void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const r
 // Both, after clearing `out`.
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const ros::Time& stamp, const Frames& frames,
                 const MarkerStyle& style, visualization_msgs::MarkerArray& out);
+
+// The same for a body that may have contact shapes (model.shapes, physics.md section 13): with `shapes.active` the
+// body is drawn from its shapes (top_mesh.hpp, shape_mesh), the touching one(s) in white in namespace "touching" after
+// Snapshot::touching, and no tip sphere or stem; without, exactly the markers above.
+void fixed_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                   const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                   visualization_msgs::MarkerArray& out);
+void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                    const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                    visualization_msgs::MarkerArray& out);
+void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,
+                const ros::Time& stamp, const Frames& frames, const MarkerStyle& style,
+                visualization_msgs::MarkerArray& out);
 
 // A closed chunk of the trail as a LINE_STRIP in namespace "trail" with the chunk's id, in the plane frame.
 visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const ros::Time& stamp,

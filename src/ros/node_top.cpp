@@ -25,7 +25,9 @@ NodeTop::NodeTop(std::string name, bool launch_top, top_sim::Scene scene, const 
       sim_(std::make_unique<top_sim::Simulator>(std::move(scene))),
       pacer_(real_time_factor, rate, wall, sim_->time()),
       frames_(frames),
-      node_time_(node_time) {}
+      node_time_(node_time) {
+  output.markers.set_shapes(sim_->model().shapes);
+}
 
 namespace {
 // `changes` counts every subscription change of every top: the per-top mirrors are refreshed only then.

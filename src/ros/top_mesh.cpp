@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 namespace top_sim_ros {
 
@@ -83,6 +84,99 @@ std::vector<Eigen::Vector2d> raised_profile(const std::vector<Eigen::Vector2d>& 
     out.push_back(profile[i] + distance * (normal(i - 1) + normal(i)).normalized());
   }
   return out;
+}
+
+namespace {
+
+constexpr int kSphereArc = 16;  // points on a sphere's meridian from pole to pole
+
+// A sphere's meridian from its bottom pole to its top pole (counter-clockwise in the (r, z) half-plane).
+std::vector<Eigen::Vector2d> sphere_profile(const top_sim::ContactShape& s) {
+  std::vector<Eigen::Vector2d> p;
+  for (int i = 0; i <= kSphereArc; ++i) {
+    const double a = -0.5 * M_PI + M_PI * i / kSphereArc;
+    p.emplace_back(s.radius * std::cos(a), s.offset + s.radius * std::sin(a));
+  }
+  p.front().x() = p.back().x() = 0.0;  // exactly on the axis: fans, no degenerate triangles
+  return p;
+}
+
+// The z range of a rim's drawn disc: from its circle, its thickness up or down.
+std::pair<double, double> rim_faces(const top_sim::ContactShape& s, double thickness, bool up) {
+  return up ? std::make_pair(s.offset, s.offset + thickness) : std::make_pair(s.offset - thickness, s.offset);
+}
+
+void append(std::vector<Eigen::Vector3d>& to, const std::vector<Eigen::Vector3d>& from) {
+  to.insert(to.end(), from.begin(), from.end());
+}
+
+// The profile the stripe is painted on: the widest shape's meridian, or a rim's edge with the outer half of its
+// faces (a disc's edge alone is too thin to see turning).
+std::vector<Eigen::Vector2d> stripe_profile(const top_sim::ContactShape& s, std::pair<double, double> z) {
+  if (s.kind == top_sim::ShapeKind::sphere) return sphere_profile(s);
+  const double r = s.radius;
+  return {{0.0, z.first}, {0.5 * r, z.first}, {r, z.first}, {r, z.second}, {0.5 * r, z.second}, {0.0, z.second}};
+}
+
+}  // namespace
+
+double rim_thickness(const top_sim::Top& top, const top_sim::ShapeSet& shapes, std::size_t i) {
+  const double rho = shapes.shape[i].radius;
+  if (shapes.count == 1) {
+    const double t2 = 12.0 * (top.inertia_transverse / top.mass - 0.25 * rho * rho);
+    if (t2 > 0.0 && std::isfinite(t2)) return std::sqrt(t2);
+  }
+  return kThinRim * rho;
+}
+
+double shape_reach(const top_sim::Top& top, const top_sim::ShapeSet& shapes) {
+  double reach = 0.0;
+  for (std::size_t i = 0; i < shapes.count; ++i) {
+    const top_sim::ContactShape& s = shapes.shape[i];
+    const double far = s.kind == top_sim::ShapeKind::sphere
+                           ? std::abs(s.offset) + s.radius
+                           : std::hypot(s.radius, std::abs(s.offset) + rim_thickness(top, shapes, i));
+    reach = std::max(reach, far);
+  }
+  return reach;
+}
+
+ShapeMesh shape_mesh(const top_sim::Top& top, const top_sim::ShapeSet& shapes, std::uint32_t touching, bool rim_up,
+                     int segments, double stripe_width, double stripe_raise) {
+  ShapeMesh mesh;
+  std::vector<std::size_t> order(shapes.count);
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return shapes.shape[a].offset < shapes.shape[b].offset; });
+  std::size_t widest = 0;
+  std::pair<double, double> widest_z;
+  for (std::size_t k = 0; k < order.size(); ++k) {
+    const std::size_t i = order[k];
+    const top_sim::ContactShape& s = shapes.shape[i];
+    const bool touches = (touching >> i) & 1u;
+    std::pair<double, double> z{s.offset - s.radius, s.offset + s.radius};
+    if (s.kind == top_sim::ShapeKind::sphere) {
+      append(touches ? mesh.touching : mesh.body, revolve(sphere_profile(s), segments, 0.0, 2.0 * M_PI));
+    } else {
+      const bool up = shapes.count == 1 ? rim_up : k > 0;
+      z = rim_faces(s, rim_thickness(top, shapes, i), up);
+      const double r = s.radius, tyre = (1.0 - kTyre) * r;
+      append(mesh.body, revolve({{0.0, z.first}, {tyre, z.first}}, segments, 0.0, 2.0 * M_PI));
+      append(touches ? mesh.touching : mesh.body,
+             revolve({{tyre, z.first}, {r, z.first}, {r, z.second}, {tyre, z.second}}, segments, 0.0, 2.0 * M_PI));
+      append(mesh.body, revolve({{tyre, z.second}, {0.0, z.second}}, segments, 0.0, 2.0 * M_PI));
+    }
+    if (s.radius > shapes.shape[widest].radius || k == 0) widest = i, widest_z = z;
+    if (k == 0) continue;
+    const top_sim::ContactShape& below = shapes.shape[order[k - 1]];
+    if (s.offset > below.offset)  // the cone between the widest circles: each shape's circle at its offset
+      append(mesh.body, revolve({{below.radius, below.offset}, {s.radius, s.offset}}, segments, 0.0, 2.0 * M_PI));
+  }
+  const top_sim::ContactShape& w = shapes.shape[widest];
+  const int stripe_segments = std::max(1, static_cast<int>(std::ceil(stripe_width * segments / (2.0 * M_PI))));
+  mesh.stripe = revolve(raised_profile(stripe_profile(w, widest_z), stripe_raise * w.radius), stripe_segments,
+                        -0.5 * stripe_width, stripe_width);
+  return mesh;
 }
 
 }  // namespace top_sim_ros

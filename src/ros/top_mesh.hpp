@@ -3,6 +3,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <cstdint>
 #include <vector>
 
 #include "top_sim/model.hpp"
@@ -38,5 +39,34 @@ std::vector<Eigen::Vector3d> revolve(const std::vector<Eigen::Vector2d>& profile
 // The profile's points off the axis, pushed out by `distance` along the profile's outward vertex normals:
 // a band turned from it lies just above the body's surface (a painted stripe without depth fighting).
 std::vector<Eigen::Vector2d> raised_profile(const std::vector<Eigen::Vector2d>& profile, double distance);
+
+// ---- A body with contact shapes (top.shapes, physics.md section 13): drawn from its shapes alone, nothing outside
+// their convex hull (so nothing drawn dips below the plane while the shapes stay above it).
+
+// The drawn thickness of the rims [m]: a lone rim (a disc) as the uniform cylinder of the body's inertias,
+// I_d = m (rho^2 / 4 + t^2 / 12), where that gives t > 0; else (a thin disc, a crown) kThinRim rho.
+constexpr double kThinRim = 0.05;
+// A rim's tyre: its edge band and the outer kTyre of its radius on both faces, one piece (highlighted when touching:
+// a disc's edge alone is a few pixels wide at rviz's usual distances).
+constexpr double kTyre = 0.12;
+double rim_thickness(const top_sim::Top& top, const top_sim::ShapeSet& shapes, std::size_t i);
+
+// Triangles in the top frame (z = figure axis, origin at the centre of mass), counter-clockwise from outside.
+struct ShapeMesh {
+  std::vector<Eigen::Vector3d> body;      // the shapes not touching, the rims' faces, the joins between shapes
+  std::vector<Eigen::Vector3d> touching;  // the touching shapes: a sphere whole, a rim its tyre (below)
+  std::vector<Eigen::Vector3d> stripe;    // a band on the widest shape, painted: the spin shows as its turning
+};
+
+// [m] no drawn point of the shapes is farther than this from the centre of mass (a rim's thickness either side).
+double shape_reach(const top_sim::Top& top, const top_sim::ShapeSet& shapes);
+
+// Each sphere as a sphere at its centre, each rim as a disc of its radius normal to z, consecutive shapes along z
+// joined by the truncated cone between their widest circles. A lone rim's thickness goes from its circle towards
+// +z when `rim_up`, else -z: the side away from the plane, so its circle stays the lowest drawn edge, lying flat
+// included; with other shapes, a rim's goes up, the lowest shape's down (away from the rest). `touching`: bit i
+// for shape i.
+ShapeMesh shape_mesh(const top_sim::Top& top, const top_sim::ShapeSet& shapes, std::uint32_t touching, bool rim_up,
+                     int segments, double stripe_width, double stripe_raise);
 
 }  // namespace top_sim_ros

@@ -725,3 +725,193 @@ TEST(Markers, LabelIsAboveTheControls) {
     EXPECT_GE(label.pose.position.z - label.scale.z, top_sim_ros::control_layout::kTop) << "mass " << top.mass;
   }
 }
+
+// ---- A body drawn from its contact shapes (top.shapes, physics.md section 13; top_mesh.hpp, shape_mesh).
+
+namespace {
+
+top_sim::Scene disc_fixture(const std::string& name) {
+  return top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/../test/ros/scenes/" + name);
+}
+
+Eigen::Vector3d in_plane(const top_sim::Snapshot& s, const geometry_msgs::Point& p) {
+  return s.com + s.orientation.normalized() * Eigen::Vector3d(p.x, p.y, p.z);
+}
+
+// The circle the touching tyre's edge draws (its outermost points at the least or greatest top-frame z), plane frame:
+// centre, unit normal (the top frame's z) and radius; every point of the edge checked on it to 1e-12 m.
+struct Ring {
+  Eigen::Vector3d centre, normal;
+  double radius = 0.0;
+};
+Ring drawn_ring(const top_sim::Snapshot& s, const visualization_msgs::Marker& band, bool lower) {
+  double z = lower ? INFINITY : -INFINITY;
+  for (const auto& p : band.points) z = lower ? std::min(z, p.z) : std::max(z, p.z);
+  double outer = 0.0;  // the tyre's face at that z reaches in from the edge: the edge is its outermost circle
+  for (const auto& p : band.points)
+    if (p.z == z) outer = std::max(outer, std::hypot(p.x, p.y));
+  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+  std::vector<Eigen::Vector3d> edge;
+  for (const auto& p : band.points)
+    if (p.z == z && std::hypot(p.x, p.y) > outer - 1e-12) edge.emplace_back(p.x, p.y, p.z);
+  for (const auto& p : edge) sum += p;
+  Ring r;
+  const Eigen::Vector3d centre = sum / static_cast<double>(edge.size());
+  r.radius = (edge.front() - centre).norm();
+  for (const auto& p : edge) EXPECT_NEAR((p - centre).norm(), r.radius, 1e-12);
+  r.centre = s.com + s.orientation.normalized() * centre;
+  r.normal = s.orientation.normalized() * Eigen::Vector3d::UnitZ();
+  return r;
+}
+
+// The drawn disc against the rim: the band's edge is the rim (radius, centre at the centre of mass, normal f_hat),
+// its lowest point on the plane and through the contact point, and no drawn point of the body below the plane.
+void expect_disc_on_plane(const top_sim::Snapshot& s, const visualization_msgs::MarkerArray& a, bool lower_edge) {
+  const visualization_msgs::Marker& band = find_marker_or_fail(a, "touching");
+  ASSERT_EQ(band.action, visualization_msgs::Marker::ADD);
+  ASSERT_FALSE(band.points.empty());
+  const Ring ring = drawn_ring(s, band, lower_edge);
+  EXPECT_NEAR(ring.radius, 0.04, 1e-12);
+  EXPECT_LT((ring.centre - s.com).norm(), 1e-12) << "the rim is centred on the centre of mass (offset 0)";
+  EXPECT_GT(ring.normal.dot(s.figure_axis), 1.0 - 1e-12) << "the disc's normal is f_hat";
+  const double lowest = ring.centre.z() - ring.radius * std::sqrt(std::max(0.0, 1.0 - ring.normal.z() * ring.normal.z()));
+  EXPECT_NEAR(lowest, 0.0, 1e-9) << "the rim's lowest point on the plane";
+  EXPECT_NEAR((s.contact_point - ring.centre).norm(), ring.radius, 1e-9) << "the contact point on the drawn rim";
+  EXPECT_NEAR((s.contact_point - ring.centre).dot(ring.normal), 0.0, 1e-9);
+  for (const char* ns : {"body", "touching"})
+    for (const auto& p : find_marker_or_fail(a, ns).points) ASSERT_GT(in_plane(s, p).z(), -1e-9) << ns;
+}
+
+}  // namespace
+
+// The rolling disc of test/ros/scenes/disc_rolling.yaml: its rim drawn where the core has it, touching, the
+// disc's thickness on the side away from the plane, whichever way f_hat points.
+TEST(ShapeMarkers, RollingDiscIsDrawnWhereItsRimIs) {
+  top_sim::Simulator sim(disc_fixture("disc_rolling.yaml"));
+  ASSERT_TRUE(sim.advance_to(0.37));
+  top_sim::Snapshot s = sim.snapshot();
+  ASSERT_EQ(s.touching, 1u);
+  ASSERT_NEAR(std::acos(s.figure_axis.z()), 0.5, 1e-6);
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(s, sim.model().top, sim.model().shapes, ros::Time(1.0), top_sim_ros::Frames(),
+                          top_sim_ros::MarkerStyle(), a);
+  expect_disc_on_plane(s, a, true);
+  for (const char* ns : {"tip", "stem"}) EXPECT_EQ(find_marker_or_fail(a, ns).action, visualization_msgs::Marker::DELETE);
+  for (const char* ns : {"body", "stripe", "spin"})
+    EXPECT_EQ(find_marker_or_fail(a, ns).action, visualization_msgs::Marker::ADD) << ns;
+
+  // The same disc turned over (f_hat -> -f_hat, the rim in the same place): its thickness goes the other way.
+  s.orientation = s.orientation.normalized() * Eigen::Quaterniond(Eigen::AngleAxisd(M_PI, Eigen::Vector3d::UnitX()));
+  s.figure_axis = -s.figure_axis;
+  top_sim_ros::to_markers(s, sim.model().top, sim.model().shapes, ros::Time(1.0), top_sim_ros::Frames(),
+                          top_sim_ros::MarkerStyle(), a);
+  expect_disc_on_plane(s, a, false);
+}
+
+// The dropped disc (test/ros/scenes/disc_dropped.yaml) at its end, lying flat: still drawn on its rim, on the plane.
+TEST(ShapeMarkers, DroppedDiscLiesFlatOnThePlaneAtItsEnd) {
+  top_sim::Simulator sim(disc_fixture("disc_dropped.yaml"));
+  sim.advance_to(5.0);
+  ASSERT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
+  const top_sim::Snapshot s = sim.snapshot();
+  ASSERT_EQ(s.touching, 1u);
+  visualization_msgs::MarkerArray a;
+  top_sim_ros::to_markers(s, sim.model().top, sim.model().shapes, ros::Time(1.0), top_sim_ros::Frames(),
+                          top_sim_ros::MarkerStyle(), a);
+  expect_disc_on_plane(s, a, s.figure_axis.z() >= 0.0);
+  double highest = 0.0;
+  for (const auto& p : find_marker_or_fail(a, "body").points) highest = std::max(highest, in_plane(s, p).z());
+  const double t = top_sim_ros::rim_thickness(sim.model().top, sim.model().shapes, 0);
+  EXPECT_NEAR(t, top_sim_ros::kThinRim * 0.04, 1e-15) << "a thin disc's inertia gives no thickness";
+  EXPECT_NEAR(highest, t, 1e-5) << "lying flat: the drawn disc from the plane up to its thickness";
+}
+
+// The highlight follows Snapshot::touching: the touching shapes in white (a sphere whole, a rim's tyre), the
+// others in the body's colour, nothing highlighted in flight. A top of tip sphere and crown rim, built by hand.
+TEST(ShapeMarkers, TouchingHighlightFollowsTouching) {
+  top_sim::Top top = small_top();
+  top_sim::ShapeSet shapes;
+  shapes.shape[0] = {top_sim::ShapeKind::sphere, -0.010, 1.5e-3};
+  shapes.shape[1] = {top_sim::ShapeKind::rim, 0.004, 0.02};
+  shapes.count = 2;
+  shapes.active = top_sim::shapes_active(shapes);
+  const double t = top_sim_ros::rim_thickness(top, shapes, 1);
+  top_sim::Snapshot s;
+  s.orientation = Eigen::AngleAxisd(1.2, Eigen::Vector3d::UnitY());
+  s.figure_axis = s.orientation * Eigen::Vector3d::UnitZ();
+  std::map<std::uint32_t, std::size_t> body_points;
+  for (std::uint32_t touching : {0u, 1u, 2u, 3u}) {
+    s.touching = touching;
+    visualization_msgs::MarkerArray a;
+    top_sim_ros::to_markers(s, top, shapes, ros::Time(1.0), top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), a);
+    const visualization_msgs::Marker& lit = find_marker_or_fail(a, "touching");
+    body_points[touching] = find_marker_or_fail(a, "body").points.size();
+    const top_sim_ros::Rgb body = top_sim_ros::body_colour(s, top_sim_ros::ColorBy::regime);
+    EXPECT_EQ(find_marker_or_fail(a, "body").color.g, body.g) << "the rest of the body keeps the regime's colour";
+    if (touching == 0) {
+      EXPECT_EQ(lit.action, visualization_msgs::Marker::DELETE) << "in flight nothing touches";
+      continue;
+    }
+    ASSERT_EQ(lit.action, visualization_msgs::Marker::ADD) << touching;
+    EXPECT_FALSE(same(lit.color, find_marker_or_fail(a, "body").color)) << "the highlight stands out";
+    bool on_tip = false, on_crown = false;
+    for (const auto& p : lit.points) {
+      const Eigen::Vector3d q(p.x, p.y, p.z);
+      const bool tip = std::abs((q - Eigen::Vector3d(0, 0, -0.010)).norm() - 1.5e-3) < 1e-12;
+      const double r = std::hypot(q.x(), q.y());  // the crown's tyre: its edge and the outer kTyre of its faces
+      const bool crown = r > (1.0 - top_sim_ros::kTyre) * 0.02 - 1e-12 && r < 0.02 + 1e-12 &&
+                         q.z() >= 0.004 - 1e-12 && q.z() <= 0.004 + t + 1e-12;
+      EXPECT_TRUE(tip || crown) << "a highlighted point on neither shape: " << q.transpose();
+      on_tip |= tip;
+      on_crown |= crown;
+    }
+    EXPECT_EQ(on_tip, (touching & 1u) != 0) << touching;
+    EXPECT_EQ(on_crown, (touching & 2u) != 0) << touching;
+  }
+  // What is highlighted leaves the body's mesh: the shares add up whatever touches.
+  EXPECT_GT(body_points[0], body_points[1]);
+  EXPECT_GT(body_points[1], body_points[3]);
+  EXPECT_GT(body_points[2], body_points[3]);
+}
+
+// One sphere given as top.shapes is the ordinary tip sphere: drawn exactly as the same top given by tip_radius and
+// com_offset (every marker, every point and colour), no "touching" marker.
+TEST(ShapeMarkers, TipSphereAloneIsTheOrdinaryTop) {
+  const std::string body = "top: {mass: 0.025, inertia_axial: 5.0e-6, inertia_transverse: 3.0e-6, ";
+  const std::string rest = "}\nplane: {inclination: 0.1}\nfriction: {law: coulomb, mu: 0.3}\n"
+                           "initial: {start: tilted, tilt: 0.1, spin: 150.0}\n";
+  top_sim::Simulator shaped(top_sim::parse_scene_text(
+      body + "shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}]" + rest, "shaped.yaml"));
+  top_sim::Simulator plain(top_sim::parse_scene_text(body + "tip_radius: 1.5e-3, com_offset: 0.01" + rest,
+                                                     "plain.yaml"));
+  ASSERT_FALSE(shaped.model().shapes.active);
+  ASSERT_TRUE(shaped.advance_to(0.2));
+  ASSERT_TRUE(plain.advance_to(0.2));
+  visualization_msgs::MarkerArray a, b;
+  top_sim_ros::to_markers(shaped.snapshot(), shaped.model().top, shaped.model().shapes, ros::Time(1.0),
+                          top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), a);
+  top_sim_ros::to_markers(plain.snapshot(), plain.model().top, ros::Time(1.0), top_sim_ros::Frames(),
+                          top_sim_ros::MarkerStyle(), b);
+  ASSERT_EQ(a.markers.size(), b.markers.size());
+  for (std::size_t i = 0; i < a.markers.size(); ++i) {
+    EXPECT_EQ(a.markers[i].ns, b.markers[i].ns);
+    EXPECT_NE(a.markers[i].ns, "touching");
+    EXPECT_EQ(a.markers[i].action, b.markers[i].action) << a.markers[i].ns;
+    EXPECT_TRUE(same(a.markers[i].color, b.markers[i].color)) << a.markers[i].ns;
+    ASSERT_EQ(a.markers[i].points.size(), b.markers[i].points.size()) << a.markers[i].ns;
+    for (std::size_t k = 0; k < a.markers[i].points.size(); ++k)
+      EXPECT_TRUE(a.markers[i].points[k].x == b.markers[i].points[k].x &&
+                  a.markers[i].points[k].y == b.markers[i].points[k].y &&
+                  a.markers[i].points[k].z == b.markers[i].points[k].z) << a.markers[i].ns << " point " << k;
+  }
+}
+
+// The dropped disc at its end: the label says the end state where a running top has its regime and mode.
+TEST(ShapeMarkers, LabelShowsTheEndState) {
+  top_sim::Simulator sim(disc_fixture("disc_dropped.yaml"));
+  EXPECT_EQ(top_sim_ros::status_text("d", sim.snapshot()).find("end:"), std::string::npos) << "running";
+  sim.advance_to(5.0);
+  ASSERT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
+  const std::string text = top_sim_ros::status_text("d", sim.snapshot(), "\n");
+  EXPECT_EQ(text.rfind("d: end: lying_flat\nphi ", 0), 0u) << text;
+}

@@ -323,6 +323,31 @@ TEST(MarkerStream, SendsEverythingOnceThenWhatChanged) {
   EXPECT_EQ(recoloured["label"].first, 1);
 }
 
+// A body with shapes (the disc of test/ros/scenes/disc_rolling.yaml): the stream draws it from the shapes it was
+// given (set_shapes), sends the touching highlight, and the fixed markers again when what touches changes (a lift-off,
+// a touchdown), and deletes the highlight with the rest when the top goes.
+TEST(MarkerStream, ShapesAreDrawnAndTheHighlightFollowsWhatTouches) {
+  StreamFixture f;
+  f.scene = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/../test/ros/scenes/disc_rolling.yaml");
+  ASSERT_TRUE(f.scene.model.shapes.active);
+  f.stream.set_shapes(f.scene.model.shapes);
+  f.snapshot.touching = 1;
+  Sent first = f.next();
+  for (const char* ns : {"body", "touching", "stripe"}) EXPECT_EQ(first[ns], std::make_pair(1, 0)) << ns;
+  for (const char* ns : {"tip", "stem"}) EXPECT_EQ(first[ns], std::make_pair(0, 1)) << ns << ": not on a disc";
+  EXPECT_EQ(f.next().count("touching"), 0u) << "sent again unchanged";
+  f.snapshot.touching = 0;  // in flight
+  Sent flying = f.next();
+  EXPECT_EQ(flying["touching"], std::make_pair(0, 1));
+  EXPECT_EQ(flying["body"], std::make_pair(1, 0));
+  f.snapshot.touching = 1;
+  EXPECT_EQ(f.next()["touching"], std::make_pair(1, 0));
+  visualization_msgs::MarkerArray gone;
+  f.stream.remove_all(f.snapshot, f.scene.model.top, top_sim_ros::Frames(), top_sim_ros::MarkerStyle(), "b/",
+                      ros::Time(2.0), gone);
+  EXPECT_EQ(sent_by(gone)["b/touching"], std::make_pair(0, 1));
+}
+
 // Beyond path_length a merge rewrites a chunk and removes its neighbour: one ADD, one DELETE; a cleared trail (a
 // reset) DELETEs every chunk sent; a new subscriber (resend_all) gets every chunk again.
 TEST(MarkerStream, MergedAndClearedChunksAreReplacedAndDeleted) {
