@@ -52,6 +52,7 @@ const char* to_string(ContactFault fault);
 
 // Ends of a run that are no fault (physics.md section 13): the run stops there and says so.
 enum class EndState { none, lying_flat };
+constexpr int kEndStateCount = 2;  // adapters read a recorded name back over these codes
 
 const char* to_string(EndState state);
 std::string describe(EndState state, double margin, double t);

@@ -42,6 +42,8 @@ const std::vector<TrajectoryColumn>& trajectory_columns() {
       // Appended last so that the columns before keep their positions in existing readers.
       {"drilling_torque", "N m", [](S s) { return s.drilling_torque; }, nullptr},
       {"patch_radius", "m", [](S s) { return s.patch_radius; }, nullptr},
+      // Bit i: shape i of top.shapes touches (physics.md section 13); exact as a double up to bit 31.
+      {"touching", "bits", [](S s) { return static_cast<double>(s.touching); }, nullptr},
   };
   return columns;
 }

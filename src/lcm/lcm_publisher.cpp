@@ -60,6 +60,7 @@ void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state
   out.contact_mode = static_cast<int8_t>(top_sim::code(s.contact_mode));
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
   out.gap = s.gap;
+  out.touching = static_cast<int64_t>(s.touching);  // LCM has no unsigned type: int64 holds all 32 bits
   out.energy = s.energy;
   out.dissipated_work = s.dissipated_work;
   out.energy_balance_residual = s.energy_balance_residual;
@@ -67,6 +68,8 @@ void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state
   out.requested_real_time_factor = pacing.requested;
   out.paused = pacing.paused;
   out.fault = s.fault_message;
+  out.end_state = s.end_state == top_sim::EndState::none ? "" : top_sim::to_string(s.end_state);
+  out.end_state_message = s.end_message;
 }
 
 Publisher::Publisher(const std::string& url, const std::string& channel) : channel_(channel) {

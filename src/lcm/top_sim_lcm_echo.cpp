@@ -81,11 +81,13 @@ void print(const top_sim::top_state_t& m, std::ostream& out) {
       << "\nphi_star: " << format_number(m.phi_star) << "\nregime: " << int(m.regime)
       << "\nregime_name: \"" << m.regime_name << "\"\ncontact_mode: " << int(m.contact_mode)
       << "\ncontact_mode_name: \"" << m.contact_mode_name << "\"\ngap: " << format_number(m.gap)
+      << "\ntouching: " << m.touching
       << "\nenergy: " << format_number(m.energy) << "\ndissipated_work: " << format_number(m.dissipated_work)
       << "\nenergy_balance_residual: " << format_number(m.energy_balance_residual)
       << "\nreal_time_factor: " << format_number(m.real_time_factor)
       << "\nrequested_real_time_factor: " << format_number(m.requested_real_time_factor)
-      << "\npaused: " << flag(m.paused) << "\nfault: \"" << m.fault << "\"\n---" << std::endl;
+      << "\npaused: " << flag(m.paused) << "\nfault: \"" << m.fault << "\"\nend_state: \"" << m.end_state
+      << "\"\nend_state_message: \"" << m.end_state_message << "\"\n---" << std::endl;
 }
 
 class Echo {

@@ -135,6 +135,7 @@ Json final_json(const Snapshot& f) {
   o["phi"] = f.phi;
   o["drilling_torque"] = f.drilling_torque;
   o["patch_radius"] = f.patch_radius;
+  o["touching"] = f.touching;
   return o;
 }
 
@@ -245,8 +246,6 @@ std::string summary_json(const RecordedSource& src, const SampledSummary& s) {
   o["skipped"] = src.skipped;
   add_outcome(o, {s.last, s.regime_seconds, "", s.phi_measured, src.phi_star, src.stationary_note, src.phi_star_source,
                   s.max_energy_residual});
-  for (const char* key : {"end_state", "end_state_message"})
-    o.missing(key, "TopState does not carry the end state (a disc lying flat) yet");
   o["mode_seconds"] = per_name<ContactMode>(s.mode_seconds);
   o.missing("mode_switch_count", not_seen);
   o.missing("mode_switches", not_seen);

@@ -67,6 +67,7 @@ py::array_t<double> array(const V& v) {
 }
 
 py::object optional_fault(ContactFault f) { return f == ContactFault::none ? py::object(py::none()) : py::str(to_string(f)); }
+py::object optional_end(EndState e) { return e == EndState::none ? py::object(py::none()) : py::str(to_string(e)); }
 
 // Every field of the Snapshot (docs/interfaces.md), vectors as NumPy arrays in the plane frame.
 py::dict snapshot_dict(const Snapshot& s) {
@@ -98,11 +99,14 @@ py::dict snapshot_dict(const Snapshot& s) {
   d["regime"] = to_string(s.regime);
   d["contact_mode"] = to_string(s.contact_mode);
   d["gap"] = s.gap;
+  d["touching"] = s.touching;
   d["energy"] = s.energy;
   d["dissipated_work"] = s.dissipated_work;
   d["energy_residual"] = s.energy_balance_residual;
   d["fault"] = optional_fault(s.fault);
   d["fault_message"] = s.fault_message;
+  d["end_state"] = optional_end(s.end_state);
+  d["end_state_message"] = s.end_message;
   return d;
 }
 
@@ -382,6 +386,7 @@ void bind_simulator(py::module_& m) {
       .def_property_readonly("contact_mode", [](PySimulator& p) { return to_string(reader(&Simulator::contact_mode)(p)); })
       .def_property_readonly("fault", [](PySimulator& p) { return optional_fault(reader(&Simulator::fault)(p)); })
       .def_property_readonly("fault_message", reader(&Simulator::fault_message))
+      .def_property_readonly("end_state", [](PySimulator& p) { return optional_end(reader(&Simulator::end_state)(p)); })
       .def_property_readonly("mode_switch_count", reader(&Simulator::mode_switch_count))
       .def_property_readonly("mode_seconds", &mode_seconds)
       .def_property_readonly("stats", &stats)

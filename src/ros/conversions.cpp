@@ -84,10 +84,12 @@ void carried_fields(Snap& s, Msg& m, Copy copy) {
   copy(s.has_stationary_state, m.has_stationary_state);
   copy(s.phi_star, m.phi_star);
   copy(s.gap, m.gap);
+  copy(s.touching, m.touching);
   copy(s.energy, m.energy);
   copy(s.dissipated_work, m.dissipated_work);
   copy(s.energy_balance_residual, m.energy_balance_residual);
   copy(s.fault_message, m.fault);
+  copy(s.end_message, m.end_state_message);
 }
 
 struct IntoMsg {  // snapshot field -> message field
@@ -117,7 +119,31 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
   out.regime_name = top_sim::to_string(s.regime);
   out.contact_mode = top_sim::code(s.contact_mode);
   out.contact_mode_name = top_sim::to_string(s.contact_mode);
+  out.end_state = s.end_state == top_sim::EndState::none ? "" : top_sim::to_string(s.end_state);
 }
+
+namespace {
+
+// The end state a recorded name stands for ("" is none); false for a name the core does not have.
+bool end_state_named(const std::string& name, top_sim::EndState& out) {
+  out = top_sim::EndState::none;
+  if (name.empty()) return true;
+  for (int i = 1; i < top_sim::kEndStateCount; ++i)
+    if (name == top_sim::to_string(static_cast<top_sim::EndState>(i))) {
+      out = static_cast<top_sim::EndState>(i);
+      return true;
+    }
+  return false;
+}
+
+std::string end_state_names() {
+  std::string names;
+  for (int i = 1; i < top_sim::kEndStateCount; ++i)
+    names += std::string(i > 1 ? ", " : "") + top_sim::to_string(static_cast<top_sim::EndState>(i));
+  return names;
+}
+
+}  // namespace
 
 top_sim::Snapshot to_snapshot(const top_sim::TopState& m, std::string& error) {
   top_sim::Snapshot s;
@@ -133,6 +159,10 @@ top_sim::Snapshot to_snapshot(const top_sim::TopState& m, std::string& error) {
               std::to_string(c.count - 1);
       return s;
     }
+  }
+  if (!end_state_named(m.end_state, s.end_state)) {
+    error = "end_state = '" + m.end_state + "': must be empty or one of " + end_state_names();
+    return s;
   }
   carried_fields(s, m, FromMsg());
   s.regime = static_cast<top_sim::Regime>(m.regime);

@@ -31,8 +31,8 @@ void to_msg(const top_sim::Snapshot& s, const ros::Time& stamp, const std::strin
 
 // The inverse of to_msg (a recorded state back to the core's Snapshot, e.g. for top_sim_run's CSV). TopState
 // carries no spin_phase, com_acceleration, regime indicators or fault kind: those keep their defaults (fault stays
-// none; fault_message holds the text). "" or an error naming field, value and allowed range in `error` (a code
-// out of range, a non-finite number).
+// none; fault_message holds the text); the end state comes back from its name. "" or an error naming field, value
+// and allowed range in `error` (a code out of range, an unknown end state, a non-finite number).
 top_sim::Snapshot to_snapshot(const top_sim::TopState& msg, std::string& error);
 
 // The frames read the top's pose alone (Simulator::pose(): no sample analysed for tf).

@@ -82,10 +82,12 @@ TEST(Cli, DefaultSceneSummaryHasTheDocumentedKeysAndSleepsAtPhiStar) {
   ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
   for (const char* key : {"sim_seconds", "cpu_seconds", "steps", "rhs_evaluations", "regime", "phi_measured", "phi_star",
                           "final", "final.position", "final.velocity", "final.f_hat", "final.omega", "final.rotor_spin",
-                          "final.drilling_torque", "final.patch_radius", "energy_balance_residual", "contact_fault"})
+                          "final.drilling_torque", "final.patch_radius", "final.touching", "energy_balance_residual",
+                          "contact_fault"})
     EXPECT_TRUE(j.get_child_optional(key)) << "missing key " << key;
   EXPECT_EQ(j.get<double>("final.drilling_torque"), 0.0);  // the default scene's point contact
   EXPECT_EQ(j.get<double>("final.patch_radius"), 0.0);
+  EXPECT_EQ(j.get<int>("final.touching"), 1);  // a body without shapes touches with its tip sphere, bit 0
   // Boost's JSON reader keeps null as the text "null".
   EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
   EXPECT_EQ(j.get<std::string>("final.rotor_spin"), "null");  // no rotor on this top
@@ -143,10 +145,11 @@ TEST(Cli, CsvHasTheDocumentedColumnsAtTheRequestedRate) {
                           "f_y", "f_z", "omega_x", "omega_y", "omega_z", "s", "mu", "N", "phi", "regime", "energy",
                           "energy_residual"})
     EXPECT_NE(std::find(header.begin(), header.end(), col), header.end()) << "missing column " << col << ": " << line;
-  // The finite contact's columns come last: the columns before keep their positions.
-  ASSERT_GE(header.size(), 2u);
-  EXPECT_EQ(header[header.size() - 2], "drilling_torque") << line;
-  EXPECT_EQ(header.back(), "patch_radius") << line;
+  // Columns added later come last, in the order they were added: the columns before keep their positions.
+  ASSERT_GE(header.size(), 3u);
+  EXPECT_EQ(header[header.size() - 3], "drilling_torque") << line;
+  EXPECT_EQ(header[header.size() - 2], "patch_radius") << line;
+  EXPECT_EQ(header.back(), "touching") << line;
   std::vector<std::vector<std::string>> rows;
   while (std::getline(in, line))
     if (!line.empty()) rows.push_back(split(line));
@@ -201,6 +204,63 @@ TEST(Cli, FiniteContactColumnsCarryTheDrillingTorqueAndPatch) {
   ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
   EXPECT_NEAR(j.get<double>("final.drilling_torque"), expected, 1e-6 * std::abs(expected));
   EXPECT_EQ(j.get<double>("final.patch_radius"), a);
+}
+
+// A thin disc (physics.md section 13) dropped 10 mm with no spin: in free fall until t = sqrt(2 h / g), touching 0;
+// on its rim from then on, touching 1 (bit 0, its one shape); it tips over and ends lying flat, exit 0, the
+// summary's end_state lying_flat and final.touching 1.
+TEST(Cli, DroppedDiscTouchesAfterFreeFallAndEndsLyingFlat) {
+  const double h = 0.01, g = 9.81, rate = 1000.0, duration = 5.0;
+  const std::string scene = in_scratch("dropped_disc.yaml"), csv = in_scratch("dropped_disc.csv"),
+                    summary = in_scratch("dropped_disc.json");
+  std::ofstream(scene) << "top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, "
+                          "shapes: [{rim: {offset: 0, radius: 0.04}}]}\n"
+                       << "plane: {inclination: 0, gravity: " << top_sim_test::num(g) << "}\n"
+                       << "friction: {law: coulomb, mu: 0.3, static: 0.3}\n"
+                       << "initial: {tilt: 0.5, spin: 0, angular_velocity_transverse: [0, 0], gap: "
+                       << top_sim_test::num(h) << "}\n";
+  const CliResult r = run_cli("'" + scene + "' --duration " + top_sim_test::num(duration) + " --rate " +
+                              top_sim_test::num(rate) + " --csv '" + csv + "' --summary '" + summary + "'");
+  ASSERT_EQ(r.exit_code, 0) << r.err;
+  const double t_touch = std::sqrt(2.0 * h / g);
+  std::ifstream in(csv);
+  std::string line;
+  ASSERT_TRUE(std::getline(in, line));
+  const std::vector<std::string> header = split(line);
+  auto column = [&header](const char* name) { return std::find(header.begin(), header.end(), name) - header.begin(); };
+  const auto t_col = column("t"), touching_col = column("touching"), mode_col = column("contact_mode");
+  ASSERT_LT(touching_col, static_cast<long>(header.size())) << line;
+  int before = 0, after = 0;
+  double first_touch = -1.0;
+  std::string last_touching;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::vector<std::string> row = split(line);
+    ASSERT_EQ(row.size(), header.size());
+    const double t = std::stod(row[t_col]);
+    EXPECT_EQ(row[touching_col], row[mode_col] == "flight" ? "0" : "1") << "t = " << t << " " << row[mode_col];
+    if (t < t_touch) {
+      EXPECT_EQ(row[touching_col], "0") << "t = " << t << ": in free fall";
+      ++before;
+    } else {
+      ++after;
+    }
+    if (row[touching_col] == "1" && first_touch < 0.0) first_touch = t;
+    last_touching = row[touching_col];
+  }
+  EXPECT_EQ(before, static_cast<int>(std::floor(t_touch * rate)) + 1);  // t = 0, 1 ms, ..., 45 ms
+  EXPECT_GT(after, 0);
+  // The first sample on the rim is the first one at or after the touchdown.
+  EXPECT_GE(first_touch, t_touch);
+  EXPECT_LE(first_touch, t_touch + 1.0 / rate);
+  EXPECT_EQ(last_touching, "1");  // lying flat on its rim
+  pt::ptree j;
+  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
+  EXPECT_EQ(j.get<int>("final.touching"), 1);
+  EXPECT_EQ(j.get<std::string>("end_state"), "lying_flat");
+  EXPECT_TRUE(contains(j.get<std::string>("end_state_message"), "lying_flat")) << j.get<std::string>("end_state_message");
+  EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
+  EXPECT_LT(j.get<double>("sim_seconds"), duration);  // the run stopped at the end state
 }
 
 }  // namespace

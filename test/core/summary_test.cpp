@@ -116,6 +116,31 @@ TEST(SummaryAccumulator, RecordedSummaryMarksWhatABagCannotGive) {
   }
   EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
   EXPECT_EQ(j.get<std::string>("contact_fault_kind"), "null");
+  EXPECT_EQ(j.get<std::string>("end_state"), "null");  // the recording says no end state: known, not unavailable
+  EXPECT_EQ(j.get<std::string>("end_state_message"), "null");
+  EXPECT_FALSE(j.get_child_optional("unavailable.end_state"));
+  EXPECT_EQ(j.get<int>("final.touching"), 0);
+}
+
+// A recording whose last state has an end state (TopState's end_state and end_state_message, read back by
+// to_snapshot) reports them as top_sim_run does, with the last state's touching.
+TEST(SummaryAccumulator, RecordedSummaryReportsTheRecordedEndState) {
+  top_sim::SummaryAccumulator acc(top_sim::mark_time(0.0, 1.0));
+  acc.add(at(0.0, 0, 0, Regime::nutating, ContactMode::flight));
+  Snapshot flat = at(1.0, 0, 0, Regime::nutating, ContactMode::rolling);
+  flat.touching = 2;  // shape 1 of top.shapes
+  flat.end_state = top_sim::EndState::lying_flat;
+  flat.end_message = top_sim::describe(top_sim::EndState::lying_flat, -1e-5, 1.0);
+  acc.add(flat);
+  top_sim::RecordedSource src;
+  src.bag = "disc.bag";
+  const pt::ptree j = parse(top_sim::summary_json(src, acc.result()));
+  EXPECT_EQ(j.get<std::string>("end_state"), "lying_flat");
+  EXPECT_EQ(j.get<std::string>("end_state_message"), flat.end_message);
+  EXPECT_FALSE(j.get_child_optional("unavailable.end_state"));
+  EXPECT_FALSE(j.get_child_optional("unavailable.end_state_message"));
+  EXPECT_EQ(j.get<std::string>("contact_fault"), "null") << "an end state is no fault";
+  EXPECT_EQ(j.get<int>("final.touching"), 2);
 }
 
 // A sampled run feeds the same accumulator: its regime_seconds cover the whole run and its phi_measured (from the

@@ -266,3 +266,53 @@ def test_finite_contact_commands_apply_and_bad_ones_are_refused():
     snap = sim.run(0.01)
     assert snap["fault"] is None
     assert snap["patch_radius"] == 0.0 and snap["drilling_torque"] == 0.0  # back to a point contact
+
+
+def disc_dict(transverse_rate=0.0, gap=None):
+    """A thin disc (0.4 kg, rim radius 0.04 m; physics.md section 13) tilted 0.5 rad on a level plane."""
+    initial = {"tilt": 0.5, "spin": 0.0, "angular_velocity_transverse": [transverse_rate, 0.0]}
+    if gap is not None:
+        initial["gap"] = gap
+    return {
+        "top": {"mass": 0.4, "inertia_axial": 3.2e-4, "inertia_transverse": 1.6e-4,
+                "shapes": [{"rim": {"offset": 0.0, "radius": 0.04}}]},
+        "plane": {"inclination": 0.0, "gravity": 9.81},
+        "friction": {"law": "coulomb", "mu": 0.3, "static": 0.3},
+        "initial": initial,
+    }
+
+
+def test_dropped_disc_touches_after_free_fall_and_ends_lying_flat():
+    h, g, rate = 0.01, 9.81, 1000.0
+    sim = top_sim.Simulator(disc_dict(gap=h))
+    start = sim.snapshot()
+    assert start["touching"] == 0 and start["contact_mode"] == "flight"
+    assert start["end_state"] is None and start["end_state_message"] == "" and sim.end_state is None
+    traj = sim.trajectory(5.0, rate)
+    t, touching = traj["t"], traj["touching"]
+    t_touch = math.sqrt(2.0 * h / g)  # free fall of h, no spin
+    assert np.count_nonzero(t < t_touch) == math.floor(t_touch * rate) + 1
+    np.testing.assert_array_equal(touching[t < t_touch], 0.0)
+    first = t[np.argmax(touching == 1.0)]
+    assert t_touch <= first <= t_touch + 1.0 / rate
+    flight = top_sim.CONTACT_MODES.index("flight")
+    np.testing.assert_array_equal(touching, np.where(traj["contact_mode"] == flight, 0.0, 1.0))
+    assert t[-1] < 5.0  # stopped at the end state
+    end = sim.snapshot()
+    assert end["end_state"] == "lying_flat" and sim.end_state == "lying_flat"
+    assert "lying_flat" in end["end_state_message"]
+    assert end["fault"] is None  # a named end, no fault
+    assert end["touching"] == 1 and isinstance(end["touching"], int)
+
+
+def test_rolling_disc_touches_throughout():
+    # Omega^2 a sin(beta) = 4 g with the centre at rest (physics.md section 13): the transverse rate -Omega tan(beta).
+    beta, a, g = 0.5, 0.04, 9.81
+    rate = -math.sqrt(4.0 * g / (a * math.sin(beta))) * math.tan(beta)
+    sim = top_sim.Simulator(disc_dict(transverse_rate=rate))
+    traj = sim.trajectory(1.0, 100.0)
+    np.testing.assert_array_equal(traj["touching"], np.ones(len(traj["t"])))
+    snap = sim.snapshot()
+    assert snap["touching"] == 1 and snap["contact_mode"] == "rolling"
+    assert snap["end_state"] is None and snap["end_state_message"] == ""
+    assert top_sim.Simulator("default").snapshot()["touching"] == 1  # no shapes: the tip sphere, bit 0

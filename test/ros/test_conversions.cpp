@@ -653,6 +653,9 @@ top_sim::Snapshot distinct_snapshot() {
   s.regime = top_sim::Regime::precessing; s.contact_mode = top_sim::ContactMode::flight;
   s.gap = next(); s.energy = next(); s.dissipated_work = next(); s.energy_balance_residual = next();
   s.fault_message = "t = 1 s: fallen";
+  s.touching = 0x80000005u;  // shapes 0, 2 and 31: every bit of the mask carried
+  s.end_state = top_sim::EndState::lying_flat;
+  s.end_message = "t = 1 s: end state lying_flat";
   return s;
 }
 
@@ -682,6 +685,10 @@ TEST(TopStateMsg, SnapshotRoundTripIsExact) {
   EXPECT_EQ(b.contact_mode, a.contact_mode);
   EXPECT_EQ(b.fault_message, a.fault_message);
   EXPECT_EQ(b.fault, top_sim::ContactFault::none) << "TopState has no fault kind: none, with the text kept";
+  EXPECT_EQ(b.touching, a.touching);
+  EXPECT_EQ(m.end_state, "lying_flat");
+  EXPECT_EQ(b.end_state, a.end_state);
+  EXPECT_EQ(b.end_message, a.end_message);
   top_sim::TopState again;  // and back: the same message
   top_sim_ros::to_msg(b, ros::Time(3.0), "plane", again);
   EXPECT_TRUE(again == m);
@@ -707,6 +714,12 @@ TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
   EXPECT_NE(error.find("friction_force"), std::string::npos) << error;
   m.friction_force.x = 0.0;
   top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "");
+  m.end_state = "lying_down";
+  top_sim_ros::to_snapshot(m, error);
+  EXPECT_EQ(error, "end_state = 'lying_down': must be empty or one of lying_flat");
+  m.end_state = "";
+  EXPECT_EQ(top_sim_ros::to_snapshot(m, error).end_state, top_sim::EndState::none);
   EXPECT_EQ(error, "");
 }
 

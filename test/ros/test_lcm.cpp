@@ -52,6 +52,10 @@ TEST(Lcm, NodeStateArrivesOnTheChannel) {
   EXPECT_EQ(m.contact_mode_name, names[int(m.contact_mode)]);
   EXPECT_GE(m.gap, 0.0);
   if (int(m.contact_mode) != int(top_sim::top_state_t::FLIGHT)) EXPECT_EQ(m.gap, 0.0);
+  // The default top has no shapes: its tip sphere is bit 0 while it touches; it has no end state.
+  EXPECT_EQ(m.touching, int(m.contact_mode) == int(top_sim::top_state_t::FLIGHT) ? 0 : 1);
+  EXPECT_EQ(m.end_state, "");
+  EXPECT_EQ(m.end_state_message, "");
 }
 
 TEST(Lcm, UnopenableUrlIsReportedAndRosKeepsPublishing) {

@@ -298,6 +298,36 @@ class BagTool(unittest.TestCase):
             with open(self.out('n_%s.json' % name)) as f:
                 self.assertEqual(json.load(f)['top'], name)
 
+    def end_bag(self, end_state, name):
+        """A disc's recording: in flight (touching 0), on its rim (touching 1), then stopped at `end_state`."""
+        path = os.path.join(self.work, name)
+        with rosbag.Bag(path, 'w') as b:
+            for k, (t, touching) in enumerate(((0.0, 0), (0.1, 1), (0.2, 1))):
+                m = state(t)
+                m.touching = touching
+                if k == 2:
+                    m.end_state, m.end_state_message = end_state, 't = 0.2 s: end state %s: the rim lies flat' % end_state
+                b.write('/top_sim/top_state', m, rospy.Time(1.0 + 1e-3 * k))
+        return path
+
+    def test_recorded_end_state_and_touching_reach_the_summary_and_csv(self):
+        p = self.run_tool(self.end_bag('lying_flat', 'disc.bag'), '--json', self.out('disc.json'), '--csv',
+                          self.out('disc.csv'))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        with open(self.out('disc.json')) as f:
+            j = json.load(f)
+        self.assertEqual(j['end_state'], 'lying_flat')
+        self.assertEqual(j['end_state_message'], 't = 0.2 s: end state lying_flat: the rim lies flat')
+        for key in ('end_state', 'end_state_message'):
+            self.assertNotIn(key, j.get('unavailable', {}))
+        self.assertIsNone(j['contact_fault'])  # an end state is no fault
+        self.assertEqual(j['final']['touching'], 1)
+        self.assertEqual(list(read_csv(self.out('disc.csv'))['touching']), [0.0, 1.0, 1.0])
+        # A name the core does not know is bad input naming the field.
+        p = self.run_tool(self.end_bag('lying_down', 'unknown.bag'), '--json', self.out('unknown.json'))
+        self.assertEqual(p.returncode, 2, p.stderr)
+        self.assertIn("end_state = 'lying_down': must be empty or one of lying_flat", p.stderr)
+
     def test_bad_input_exits_two_and_write_errors_one(self):
         two = self.bag({'/top_sim/top_state': [0.0, 0.1], '/top_sim/spinner/top_state': [0.0, 0.1]})
         chatter = self.bag({'/chatter': 'hello'}, 'chatter.bag')

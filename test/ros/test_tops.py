@@ -23,12 +23,14 @@ class Latest(object):
 
     def __init__(self, topic, kind):
         self.msg = None
+        self.count = 0
         self.cond = threading.Condition()
         self.sub = rospy.Subscriber(topic, kind, self.on_msg, queue_size=10)
 
     def on_msg(self, m):
         with self.cond:
             self.msg = m
+            self.count += 1
             self.cond.notify_all()
 
     def wait(self, pred=lambda m: True, timeout=20.0):
@@ -100,6 +102,44 @@ class Tops(unittest.TestCase):
         markers = Latest(NODE + '/markers', MarkerArray).wait(
             lambda m: {'a2', 'b2'} <= set(k.ns.split('/')[0] for k in m.markers if '/' in k.ns))
         self.assertIsNotNone(markers, 'no markers of spawned tops a2 and b2')
+
+    def test_dropped_disc_touching_and_end_state(self):
+        """A thin disc (physics.md section 13) dropped 10 mm: TopState's touching is 0 in free fall (until
+        sqrt(2 h / g)) and 1 on its rim, in the top_states array and on its own topic; after it falls flat,
+        end_state is lying_flat and the node keeps publishing it."""
+        scene = ('top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, '
+                 'shapes: [{rim: {offset: 0, radius: 0.04}}]}\n'
+                 'plane: {inclination: 0}\nfriction: {law: coulomb, mu: 0.3, static: 0.3}\n'
+                 'initial: {tilt: 0.5, spin: 0, angular_velocity_transverse: [0, 0], gap: 0.01}\n')
+        t_touch = (2.0 * 0.01 / 9.81) ** 0.5
+        seen, lock = [], threading.Lock()
+
+        def on_array(m):
+            with lock:
+                seen.extend((s.sim_time, s.touching, s.contact_mode, s.end_state)
+                            for n, s in zip(m.names, m.states) if n == 'disc6')
+        sub = rospy.Subscriber(NODE + '/top_states', TopStateArray, on_array, queue_size=100)
+        self.addCleanup(sub.unregister)
+        own = Latest(NODE + '/disc6/top_state', TopState)
+        self.spawned('disc6', scene)
+        flat = own.wait(lambda m: m.end_state == 'lying_flat', timeout=30.0)
+        self.assertIsNotNone(flat, 'disc6 never reported end_state lying_flat')
+        self.assertIn('lying_flat', flat.end_state_message)
+        self.assertEqual(flat.fault, '')  # a named end, no fault
+        self.assertEqual(flat.touching, 1)
+        n = own.count
+        later = own.wait(lambda m: own.count >= n + 10, timeout=10.0)
+        self.assertIsNotNone(later, 'the node stopped publishing disc6 after its end')
+        self.assertEqual((later.end_state, later.sim_time), ('lying_flat', flat.sim_time))
+        with lock:
+            states = list(seen)
+        for t, touching, mode, _ in states:
+            self.assertEqual(touching, 0 if mode == TopState.FLIGHT else 1, 'sim_time %g' % t)
+            if t < t_touch:
+                self.assertEqual((touching, mode), (0, TopState.FLIGHT), 'sim_time %g: in free fall' % t)
+        self.assertTrue(any(touching == 0 for _, touching, _, _ in states), 'no state in free fall in the array')
+        self.assertTrue(any(touching == 1 and t >= t_touch for t, touching, _, _ in states), 'never on its rim')
+        self.assertTrue(any(end == 'lying_flat' for _, _, _, end in states), 'the array has no end state')
 
     def test_commands_reach_only_their_top(self):
         self.spawned('a3')
