@@ -414,6 +414,11 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
   const ContactShape& touching = model.shapes.shape[model.shapes.touching];  // v_t = v_cm + w x r_k, |r_k| <= reach
   const double R = shapes ? std::abs(touching.offset) + touching.radius : model.top.tip_radius;
   if (R > 0.0) max_step[idx::omega] = max_step[idx::omega + 1] = width / R;  // v_t = u - R omega x n
+  if (!shapes) return;
+  // A shape's lowest point r_k moves with f_hat: v_t = v_cm + w x r_k changes by |w| reach per unit of f_hat.
+  max_step[idx::omega + 2] = width / R;
+  const double turn = angular_velocity(y).norm() * R;
+  if (turn > 0.0) max_step[idx::f] = max_step[idx::f + 1] = max_step[idx::f + 2] = width / turn;
 }
 
 namespace {
