@@ -484,6 +484,11 @@ int main(int argc, char** argv) {
     return *done;
   top_sim::Scene scene;
   if (!load(args.scene_path, scene)) return 2;
+  if (top_sim::has_shapes(scene.model)) {  // one sphere in top.shapes is the tip sphere and has_shapes is false
+    std::cerr << "top_sim_stability: top.shapes: a body with a rim has no sleeping state on its tip sphere to "
+                 "analyse (physics.md sections 10 and 13: the linear stability covers a tip sphere only)\n";
+    return 2;
+  }
   const double spin = args.spin.value_or(scene.initial.spin);
   if (spin == 0.0) {
     std::cerr << "top_sim_stability: the scene's initial.spin is 0: give a nonzero --spin\n";

@@ -67,6 +67,14 @@ TEST(StabilityCli, NoSleepingStateExitsThreeWithTheReason) {
   EXPECT_TRUE(contains(r.err, "slides downhill")) << r.err;
 }
 
+// A body with a rim (Euler's disk) is refused naming top.shapes and why, exit 2, not analysed as if a tip sphere.
+TEST(StabilityCli, BodyWithARimIsRefusedNamingTopShapes) {
+  const CliResult r = run(scene("euler_disk"));
+  EXPECT_EQ(r.exit_code, 2) << r.err;
+  EXPECT_TRUE(contains(r.err, "top.shapes")) << r.err;
+  EXPECT_TRUE(contains(r.err, "tip sphere only")) << r.err;
+}
+
 TEST(StabilityCli, JsonHasExactlyTheDocumentedFields) {
   const std::string path = scratch() + "/default.json";
   const CliResult r = run(scene("default") + " --json '" + path + "'");
