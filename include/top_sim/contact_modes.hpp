@@ -62,6 +62,11 @@ struct ModeMargins {
 // with a torsional impulse that stops omega_n as well (physics.md section 12).
 void apply_stick_impulse(const Model& model, StateVector& y);
 
+// The stick impulse, taken only when the stuck state's rolling force lies inside the static cone (its rolling
+// transfer margin > 0): true and y stuck, else false and y untouched. A stick test at the state before the impulse
+// can pass by a hair and leave a rolling state whose margin, negative from its start, is never armed.
+bool stick_inside_cone(const Model& model, StateVector& y);
+
 // Applies a contact impulse P at the contact point to u (3-vector: in-plane and gap rate), omega and nu, and on a
 // patch a torsional impulse `torsion` about n [N m s].
 void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y, double torsion = 0.0);

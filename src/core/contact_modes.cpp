@@ -95,6 +95,16 @@ void apply_stick_impulse(const Model& model, StateVector& y) {
   apply_contact_impulse(model, -r.K.llt().solve(v_t), y);
 }
 
+bool stick_inside_cone(const Model& model, StateVector& y) {
+  StateVector stuck = y;
+  apply_stick_impulse(model, stuck);
+  Dynamics dyn;
+  evaluate_dynamics(model, ContactMode::rolling, stuck, dyn);
+  if (!(dyn.margins.transfer > 0.0)) return false;
+  y = stuck;
+  return true;
+}
+
 ClosingResult close_contact(const Model& model, StateVector& y) {
   ClosingResult out;
   y[idx::gap] = 0.0;
@@ -116,8 +126,7 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
       v_t = std::hypot(v_t, lever * y[idx::omega + 2]);
       holds = st.force.z() > 0.0 && stick_margin(model, st) >= 0.0;
     }
-    if (v_t <= model.contact.stick_speed && holds) {
-      apply_stick_impulse(model, y);
+    if (v_t <= model.contact.stick_speed && holds && stick_inside_cone(model, y)) {
       out.mode = ContactMode::rolling;
       out.stuck = true;
       return out;

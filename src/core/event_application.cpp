@@ -42,10 +42,7 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
     case Event::transfer:
       if (mode_ == ContactMode::slipping) {
         const double e0 = mechanical_energy(model_, y);
-        apply_stick_impulse(model_, y);
-        if (!(margins_of(model_, ContactMode::rolling, y).transfer > 0.0)) {
-          // Stuck, the rolling force would leave the cone (the slipping state's stick test and the stuck state
-          // differ by the impulse): slip on, the stick disarmed until its margin has been positive again.
+        if (!stick_inside_cone(model_, y)) {  // slip on, the stick disarmed until its margin has been positive
           restart(y_, t_, false);
           transfer_armed_ = false;
           return;
