@@ -56,6 +56,8 @@ struct ModeMargins {
                             // rolling: (mu_s F_n - |F_t|)/(m g); flight: none
   double painleve = kNone;  // slipping: m (n . K d) (fault when <= 0)
   double tilt = kNone;      // in contact: n . f_hat - cos(theta_max) ("fallen" when < 0); none for a ball
+  double touch = kNone;     // in contact, a body with shapes: the least gap of the shapes not touching (a second
+                            // shape's touchdown when <= 0)
 };
 
 // Applies the stick impulse P = -K^-1 (v_t, 0) to u, omega and nu (W_diss is booked by the caller); on a patch

@@ -21,12 +21,17 @@ struct ContactShape {
 
 // The body's shapes, at most kMaxShapes (a fixed array: no allocation of its own).
 constexpr std::size_t kMaxShapes = 4;
+constexpr std::size_t kNoShape = kMaxShapes;  // ShapeSet::second when one shape touches
 struct ShapeSet {
   std::array<ContactShape, kMaxShapes> shape{};
   std::size_t count = 0;
-  std::size_t touching = 0;  // the shape in contact (set by the Simulator at touchdown; unused in flight)
+  std::size_t touching = 0;  // the shape in contact (set by the Simulator at touchdown; unused in flight); the
+                             // state's gap is its own
+  std::size_t second = kNoShape;  // a second shape in contact at once (a top on tip and crown), else kNoShape
   bool active = false;       // a rim or several shapes: not the tip sphere alone (set with the shapes, shapes_active)
 };
+
+inline bool two_touching(const ShapeSet& shapes) { return shapes.second != kNoShape; }
 
 // Whether `shapes` is more than the tip sphere alone; a ShapeSet built by hand sets `active` with it.
 inline bool shapes_active(const ShapeSet& shapes) {

@@ -49,6 +49,7 @@ struct TwoShapeMotion {
   double dissipation = 0.0;
   double painleve = ModeMargins::kNone;  // both slipping: > 0 iff A_kj = n . K_kj d_j is a P-matrix (unique N_k):
                                          // m min(A_11, A_22, det A / tr A)
+  std::array<ShapePoint, 2> point;       // the lowest points they act at
 };
 TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
                                 const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
@@ -75,8 +76,20 @@ std::uint32_t touching_shapes(const Model& model, ContactMode mode);
 // The touching shape's contact kinematics at the state y (v_t, t_hat, rolling speed, slip; contact.hpp's for the tip
 // sphere): the stiff slip-onset layer and the Jacobian's difference steps read the contact's slip from here.
 ContactKinematics shape_kinematics(const Model& model, const StateVector& y);
-// The touching shape's motion in `mode` at the state y.
+// The touching shape's motion in `mode` at the state y; and shape `shape`'s as if it alone touched.
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y);
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y, std::size_t shape);
+// The least gap of the shapes not in contact and which shape has it (kNoShape and kNone when every shape touches):
+// a second shape's touchdown while one touches.
+double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape);
+// Two shapes touching (two_touching): both slipping, at the touching shape (index 0) and the second (index 1).
+TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y);
+// Applies an impulse P at shape `shape`'s lowest point to u, the touching shape's gap rate and omega.
+void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y);
+// K_kj of two_shape_motion at the state y: d v_k per newton-second at shape j's lowest point.
+Eigen::Matrix3d shape_pair_response(const Model& model, const StateVector& y, std::size_t k, std::size_t j);
+// The material velocity v_cm + w x r_k at shape `shape`'s lowest point.
+Eigen::Vector3d shape_contact_velocity(const Model& model, const StateVector& y, std::size_t shape);
 // dy/dt of the body with shapes (no rotor, a point contact, air).
 void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                       ContactForceRecord* record, ShapeMotion* motion = nullptr);

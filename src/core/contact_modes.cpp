@@ -51,19 +51,11 @@ bool rolling_consistent(const Eigen::Vector3d& F, double static_friction) {
 }
 
 void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y, double torsion) {
+  if (has_shapes(model)) return apply_shape_impulse(model, model.shapes.touching, P, y);
   const detail::RigidBody b(model, y);
   // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
   // -d omega . f_hat.
-  if (has_shapes(model)) {  // gap_rate is the touching shape's n . v_k: it changes by n . (dv_cm + d omega x r_k)
-    const Eigen::Vector3d r = shape_point(model.shapes.shape[model.shapes.touching], b.f_hat, b.w).r;
-    const Eigen::Vector3d d_omega = b.inverse_inertia(r.cross(P));
-    const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
-    set_velocity(y, Eigen::Vector2d(y[idx::u] + d_u.x(), y[idx::u + 1] + d_u.y()));
-    y[idx::gap_rate] += (P / b.m + d_omega.cross(r)).z();
-    set_angular_velocity(y, b.w + d_omega);
-    return;
-  }
   const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
                                                  : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
   const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);

@@ -269,9 +269,31 @@ template <ContactModel kContact>
 
 namespace {
 
+// Two shapes touching: their summed force is the contact force, mu the ratio of its parts, v_t and the slip the
+// touching shape's (the second's are in touching_pair_motion).
+void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+  const TwoShapeMotion m = touching_pair_motion(model, y);
+  StateVector dydt;
+  ContactForceRecord record;
+  shape_derivative(model, mode, y, dydt, &record);
+  out.contact_force = m.force[0] + m.force[1];
+  out.normal_force = out.contact_force.z();
+  out.friction_force = Eigen::Vector3d(out.contact_force.x(), out.contact_force.y(), 0.0);
+  out.mu = out.normal_force > 0.0 ? out.friction_force.norm() / out.normal_force : 0.0;
+  out.omega_dot = m.omega_dot;
+  out.a_cm = m.a_cm;
+  out.dissipation = m.dissipation;
+  out.contact.v_t = m.v_t[0];
+  out.contact.slip = m.slip[0];
+  out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
+  out.psi_dot = dydt[idx::psi];
+  margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins);
+}
+
 // A body with shapes: its touching shape's motion (shape_motion.hpp), mapped onto the Dynamics every reader uses.
 void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
   out = Dynamics{};
+  if (mode != ContactMode::flight && two_touching(model.shapes)) return evaluate_pair_dynamics(model, mode, y, out);
   ShapeMotion m;
   StateVector dydt;
   shape_derivative(model, mode, y, dydt, nullptr, &m);  // the motion and the reference point's rates, once
@@ -432,6 +454,12 @@ namespace {
       mg.lift = std::min(mg.lift, shape_gap(model, y, model.shapes.shape[k]));
     return;
   }
+  std::size_t free_shape;
+  mg.touch = free_shape_gap(model, y, free_shape);
+  if (two_touching(model.shapes)) {  // no stick at two contacts (both slip: physics.md 13.4); no flat end either
+    mg.transfer = ModeMargins::kNone;
+    return;
+  }
   if (model.shapes.shape[model.shapes.touching].kind == ShapeKind::rim) {
     const double c = figure_axis(y).normalized().z();
     mg.tilt = std::sqrt(std::max(0.0, 1.0 - c * c)) - kFlatEndSine;
@@ -472,7 +500,10 @@ namespace {
 bool margins_from_record(const Model& model, ContactMode mode, const StateVector& y, const ContactForceRecord& r,
                          double cos_max_tilt, ModeMargins& mg) {
   const bool complete = contact_margins(model, mode, y, r, cos_max_tilt, mg);
-  if (has_shapes(model)) [[unlikely]] shape_margins(model, mode, y, mg);  // the tilt and touchdown margins
+  if (has_shapes(model)) [[unlikely]] {  // the tilt and touchdown margins; two contacts have no stick function
+    shape_margins(model, mode, y, mg);
+    return complete || (mode != ContactMode::flight && two_touching(model.shapes));
+  }
   return complete;
 }
 

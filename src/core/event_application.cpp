@@ -55,8 +55,15 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       }
       break;
     case Event::lift_off:
+      if (has_shapes(model_) && two_touching(model_.shapes)) {  // one of two lets go; the other stays
+        let_go_of_one(y);
+        break;
+      }
       y[idx::gap] = y[idx::gap_rate] = 0.0;
       switch_mode(ContactMode::flight, ModeSwitchKind::lift_off);
+      break;
+    case Event::second_touchdown:
+      second_touchdown(y);
       break;
     case Event::touchdown: {
       if (has_shapes(model_)) retouch(model_, y, lowest_shape(model_, y));  // the shape that reached the plane
@@ -79,6 +86,51 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       return;
   }
   if (!stopped()) restart(y, t_, false); else commit(y, t_);
+}
+
+// A shape not touching reaches the plane while one touches (apply_second_touchdown): afterwards both touch and
+// slip, or the new one alone touches (closing rule), or it bounced into a flight. The impact's loss is booked.
+void SimulatorImpl::second_touchdown(StateVector& y) {
+  std::size_t j;
+  free_shape_gap(model_, y, j);
+  if (two_touching(model_.shapes)) {  // scene.cpp refuses a body of more than two shapes: never reached
+    fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_) + " (a third shape touched)");
+    return;
+  }
+  const double e0 = mechanical_energy(model_, y);
+  const SecondTouchdown impact = apply_second_touchdown(model_, y, j);
+  if (impact.painleve) {
+    fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+    return;
+  }
+  ContactMode next = ContactMode::slipping;
+  if (impact.bounced) next = ContactMode::flight;
+  else if (!impact.both) next = close_contact(model_, y).mode;
+  const double loss = e0 - mechanical_energy(model_, y);
+  y[idx::w_diss] += loss;
+  switch_mode(next, ModeSwitchKind::touchdown, -loss);
+  if (impact.both) settle_pair(y);
+}
+
+// Two shapes touching: the one whose normal force is the smaller lets go when it is negative; the other closes
+// (closing rule: it may stick, or fly when its own normal force is negative too). The state's gap becomes the
+// remaining shape's (its drift from 0, the constraint's integration error, is booked with the energy).
+void SimulatorImpl::let_go_of_one(StateVector& y) {
+  const TwoShapeMotion m = touching_pair_motion(model_, y);
+  const double e0 = mechanical_energy(model_, y);
+  if (m.normal_force[0] < m.normal_force[1]) retouch(model_, y, model_.shapes.second);
+  model_.shapes.second = kNoShape;
+  const ClosingResult closed = close_contact(model_, y);
+  const double change = mechanical_energy(model_, y) - e0;
+  y[idx::w_diss] -= change;
+  switch_mode(closed.mode, ModeSwitchKind::lift_off, change);
+}
+
+// After a second touchdown: a pair whose forces pull one shape onto the plane is no contact pair; that shape lets
+// go at once.
+void SimulatorImpl::settle_pair(StateVector& y) {
+  const TwoShapeMotion m = touching_pair_motion(model_, y);
+  if (m.normal_force[0] < 0.0 || m.normal_force[1] < 0.0) let_go_of_one(y);
 }
 
 void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {

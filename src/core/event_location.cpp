@@ -21,6 +21,7 @@ constexpr double kForceGuard = 0.5;     // N, F_n, rolling margin: fraction of t
 constexpr double kStickGuard = 1.0e3;   // stick function: |v_t| < 1000 v_stick
 constexpr double kPainleveGuard = 0.5;  // m n.K d (1 without friction)
 constexpr double kTiltGuard = 0.05;     // n . f_hat - cos(theta_max)
+constexpr double kTouchGuard = 0.1;     // a free shape's gap: fraction of the touching shape's reach
 
 // Spacing of event samples: 1/40 of the nutation period 2 pi I_d / |L_total . f_hat| (infinite without spin).
 double sample_spacing(const Model& model, const StateVector& y) {
@@ -36,6 +37,10 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
   if (mode == ContactMode::flight) return true;
   const double weight = model.top.mass * model.plane.gravity;  // lift is a force; transfer is already in weights
   const double transfer_guard = mode == ContactMode::slipping ? kStickGuard : kForceGuard;
+  if (m.touch < ModeMargins::kNone) {  // a body with shapes: near a second shape's touchdown
+    const ContactShape& k = model.shapes.shape[model.shapes.touching];
+    if (m.touch < kTouchGuard * (std::abs(k.offset) + k.radius)) return true;
+  }
   return m.lift < kForceGuard * weight || m.transfer < transfer_guard || m.painleve < kPainleveGuard ||
          m.tilt < kTiltGuard;
 }
@@ -94,6 +99,7 @@ inline LocatedEvent SimulatorImpl::locate_event(double t_end, const StateVector&
     if (kind != Event::none) return {kind, 0, first_event_time(t_prev, tk), mk};
     if (mk.lift > 0.0) lift_armed_ = true;
     if (mk.transfer > 0.0) transfer_armed_ = true;
+    if (mk.touch > 0.0) touch_armed_ = true;
     t_prev = tk;
   }
   last_margins_ = m1;
@@ -157,6 +163,8 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
     if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) return Event::touchdown;
   } else if (lift_armed_ && m.lift < 0.0) {
     return Event::lift_off;
+  } else if (touch_armed_ && m.touch <= 0.0) {
+    return Event::second_touchdown;
   }
   if (transfer_armed_ && m.transfer <= 0.0) return Event::transfer;
   if (m.tilt < 0.0) return Event::fallen;

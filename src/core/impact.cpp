@@ -2,11 +2,13 @@
 #include "top_sim/impact.hpp"
 
 #include <Eigen/Cholesky>
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
 
 #include "top_sim/contact.hpp"
 #include "top_sim/contact_modes.hpp"
+#include "top_sim/friction.hpp"
 #include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
@@ -52,6 +54,75 @@ ImpactResult apply_impact(const Model& model, StateVector& y) {
   apply_contact_impulse(model, P, y);
   out.normal_velocity_after = y[idx::gap_rate];  // n . v_c = n . u: the normal part of R omega x n is 0
   if (out.plastic) y[idx::gap_rate] = 0.0;       // the contact closes exactly (rounding aside it already is)
+  return out;
+}
+
+namespace {
+
+// The sliding impulse's direction n - mu_i t_hat- at shape `shape` (section 9's mu_i).
+Eigen::Vector3d sliding_direction(const Model& model, const StateVector& y, std::size_t shape) {
+  const ShapeMotion m = shape_motion(model, ContactMode::flight, y, shape);
+  const double v_eps = model.regularization_speed;
+  const double mu_i = std::max(static_friction(model), friction_coefficient(model.friction, m.slip));
+  return Eigen::Vector3d::UnitZ() - mu_i * m.v_t / std::sqrt(m.v_t.squaredNorm() + v_eps * v_eps);
+}
+
+// Plastic impulses lambda_i d_i at shapes j and k that leave both normal velocities 0; false when none with
+// lambda >= 0 exists (`bad` the failing denominator or lambda).
+bool shared_impulse(const Model& model, StateVector& y, std::size_t j, std::size_t k, bool frictionless, double& bad) {
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector3d d_j = frictionless ? n : sliding_direction(model, y, j);
+  const Eigen::Vector3d d_k = frictionless ? n : sliding_direction(model, y, k);
+  Eigen::Matrix2d A;
+  A << n.dot(shape_pair_response(model, y, j, j) * d_j), n.dot(shape_pair_response(model, y, j, k) * d_k),
+      n.dot(shape_pair_response(model, y, k, j) * d_j), n.dot(shape_pair_response(model, y, k, k) * d_k);
+  const Eigen::Vector2d v_n(shape_contact_velocity(model, y, j).z(), shape_contact_velocity(model, y, k).z());
+  bad = std::min({A(0, 0), A(1, 1), A.determinant()});
+  if (!(bad > 0.0)) return false;
+  const Eigen::Vector2d lambda = A.partialPivLu().solve(-v_n);
+  bad = lambda.minCoeff();
+  if (!(bad >= 0.0)) return false;
+  apply_shape_impulse(model, j, lambda[0] * d_j, y);
+  apply_shape_impulse(model, k, lambda[1] * d_k, y);
+  return true;
+}
+
+}  // namespace
+
+SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t j) {
+  SecondTouchdown out;
+  const std::size_t k = model.shapes.touching;
+  StateVector alone = y;
+  retouch(model, alone, j);  // j becomes the touching shape: section 9's impact there
+  alone[idx::gap] = 0.0;
+  const ImpactResult impact = apply_impact(model, alone);
+  if (impact.painleve) {
+    model.shapes.touching = k;
+    out.painleve = true;
+    out.denominator = impact.denominator;
+    return out;
+  }
+  if (shape_gap_rate(model, alone, model.shapes.shape[k]) >= 0.0) {  // k separates (or stays at rest): j alone
+    y = alone;
+    out.bounced = !impact.plastic;
+    return out;
+  }
+  model.shapes.touching = k;  // k stays the state's shape; j joins it
+  const double e0 = shape_mechanical_energy(model, y);
+  StateVector shared = y;
+  if (!shared_impulse(model, shared, j, k, false, out.denominator) ||
+      shape_mechanical_energy(model, shared) > e0) {
+    shared = y;
+    out.frictionless = true;
+    if (!shared_impulse(model, shared, j, k, true, out.denominator)) {
+      out.painleve = true;
+      return out;
+    }
+  }
+  y = shared;
+  y[idx::gap_rate] = 0.0;  // k's normal velocity, 0 by the impulse (rounding aside)
+  model.shapes.second = j;
+  out.both = true;
   return out;
 }
 

@@ -595,22 +595,21 @@ void check_initial_state(const Scene& scene, const std::string& file) {
   check_shapes_at_start(scene.model, y, file);
 }
 
-// The Simulator steps a tip sphere or one rim. Several shapes at once have their motion in the core
-// (shape_motion.hpp) but no modes or events in the Simulator yet (docs/design/contact_shapes.md): refused, not run
-// wrong; so is a rim with what only the tip sphere has.
+// The Simulator steps a body of one or two shapes (two touching at once at most, physics.md 13.4): more are
+// refused, not run wrong; so are shapes with what only the tip sphere has.
 void check_simulated_shapes(const Model& model, const std::string& file) {
   if (!has_shapes(model)) return;
-  if (model.shapes.count > 1)
+  if (model.shapes.count > 2)
     throw SceneError(file, "top.shapes", std::to_string(model.shapes.count) +
-                                             " shapes are not simulated yet; give one sphere or one rim");
-  // A rim's body runs the point contact's full model for now: the rest is the tip sphere's alone.
+                                             " shapes: at most 2 are simulated (two in contact at once)");
+  // A body of shapes runs the point contact's full model for now: the rest is the tip sphere's alone.
   const char* refused = model.top.has_rotor                                     ? "top.rotor"
                         : model.finite_contact.has_patch()                       ? "contact.patch_radius"
                         : model.kind != ModelKind::full || model.automatic.enabled ? "model.kind"
                         : model.normal_force != NormalForceModel::constrained    ? "model.normal_force"
                                                                                  : nullptr;
   if (refused)
-    throw SceneError(file, refused, "not with a rim in top.shapes yet (a rim runs the point contact's full model, "
+    throw SceneError(file, refused, "not with top.shapes yet (a body of shapes runs the point contact's full model, "
                                     "with air, rolling resistance and the constrained normal force)");
 }
 

@@ -115,11 +115,18 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
   const Top& top = model.top;
   const std::array<ShapePoint, 2> p{shape_point(shapes[0], f_hat, w), shape_point(shapes[1], f_hat, w)};
   const FreeMotion free = free_motion(model, v_cm, f_hat, w);
+  // Rolling resistance (section 12) at each contact: N_j tau_r moves every contact k by -r_k x I^-1 tau_r per newton.
+  const double delta = model.finite_contact.rolling_resistance;
+  const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
+  const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
   Eigen::Matrix<double, 6, 6> K;
   Eigen::Matrix<double, 6, 1> b;
   for (int k = 0; k < 2; ++k) {
     b.segment<3>(3 * k) = response_bias(free, p[k], w);
-    for (int j = 0; j < 2; ++j) K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
+    for (int j = 0; j < 2; ++j) {
+      K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
+      if (delta > 0.0) K.block<3, 1>(3 * k, 3 * j + 2) -= p[k].r.cross(Ii_tau);
+    }
   }
   // Unknowns: F_k of a stuck contact, N_k of a slipping one (F_k = N_k d_k); rows: all of v_k' = 0 stuck, n . v_k' = 0
   // slipping. F = B z, rows C: (C K B) z = C b.
@@ -160,9 +167,12 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
   }
   if (A.rows() == 2 && A.cols() == 2)
     out.painleve = top.mass * std::min({A(0, 0), A(1, 1), A.determinant() / (A(0, 0) + A(1, 1))});
+  const double N = out.normal_force[0] + out.normal_force[1];
   out.a_cm = free.g + (out.force[0] + out.force[1]) / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) - free.Ii_G;
-  out.dissipation += free.air_power;
+  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) + N * Ii_tau -
+                  free.Ii_G;
+  out.dissipation += free.air_power - N * tau_r.dot(w);
+  out.point = p;
   return out;
 }
 
@@ -235,29 +245,72 @@ ContactKinematics shape_kinematics(const Model& model, const StateVector& y) {
 
 std::uint32_t touching_shapes(const Model& model, ContactMode mode) {
   if (mode == ContactMode::flight) return 0;
-  return has_shapes(model) ? std::uint32_t{1} << model.shapes.touching : 1;
+  if (!has_shapes(model)) return 1;
+  const std::uint32_t second = two_touching(model.shapes) ? std::uint32_t{1} << model.shapes.second : 0;
+  return (std::uint32_t{1} << model.shapes.touching) | second;
+}
+
+double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape) {
+  const BodyView b = body_view(model, y);
+  double least = ModeMargins::kNone;
+  shape = kNoShape;
+  for (std::size_t k = 0; k < model.shapes.count; ++k) {
+    if (k == model.shapes.touching || k == model.shapes.second) continue;
+    const double gap = b.z_cm + shape_height(model.shapes.shape[k], b.f_hat.z());
+    if (gap < least) least = gap, shape = k;
+  }
+  return least;
+}
+
+void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const Eigen::Vector3d r = shape_point(model.shapes.shape[shape], b.f_hat, b.w).r;
+  const Eigen::Vector3d r_touching = shape_point(touching_shape(model), b.f_hat, b.w).r;
+  // dv_cm = P / m, I d omega = r x P; u = v_cm - f omega x f_hat; gap_rate is the touching shape's n . v_k.
+  const Eigen::Vector3d d_omega = inverse_inertia(model.top, b.f_hat, r.cross(P));
+  const Eigen::Vector3d d_u = P / model.top.mass - d_omega.cross(model.top.com_offset * b.f_hat);
+  y[idx::u] += d_u.x();
+  y[idx::u + 1] += d_u.y();
+  y[idx::gap_rate] += (P / model.top.mass + d_omega.cross(r_touching)).z();
+  for (int i = 0; i < 3; ++i) y[idx::omega + i] += d_omega[i];
+}
+
+Eigen::Matrix3d shape_pair_response(const Model& model, const StateVector& y, std::size_t k, std::size_t j) {
+  const BodyView b = body_view(model, y);
+  return cross_response(model.top, b.f_hat, shape_point(model.shapes.shape[k], b.f_hat, b.w).r,
+                        shape_point(model.shapes.shape[j], b.f_hat, b.w).r);
+}
+
+Eigen::Vector3d shape_contact_velocity(const Model& model, const StateVector& y, std::size_t shape) {
+  const BodyView b = body_view(model, y);
+  return b.v_cm + b.w.cross(shape_point(model.shapes.shape[shape], b.f_hat, b.w).r);
 }
 
 ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y) {
-  const BodyView b = body_view(model, y);
-  return shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+  return shape_motion(model, mode, y, model.shapes.touching);
 }
 
-void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
-                      ContactForceRecord* record, ShapeMotion* motion) {
+ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector& y, std::size_t shape) {
   const BodyView b = body_view(model, y);
-  const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
-  if (record) {
-    record->force = m.force;
-    record->drilling_torque = 0.0;
-    record->painleve = m.painleve;
-  }
+  return shape_motion(model, model.shapes.shape[shape], mode, b.v_cm, b.f_hat, b.w);
+}
+
+namespace {
+
+// The body's rates in a contact mode: a_cm, w' and the power dissipated, whatever touches.
+struct BodyRates {
+  Eigen::Vector3d a_cm, omega_dot;
+  double dissipation = 0.0;
+};
+
+// dy/dt from the body's rates; `p` the touching shape's point (its gap's acceleration in flight).
+void write_derivative(const Model& model, ContactMode mode, const StateVector& y, const BodyView& b,
+                      const BodyRates& r, const ShapePoint& p, StateVector& dydt) {
   // The reference point r_m = r_cm - f f_hat in the plane: a_m = a_cm - f (w' x f_hat + w x (w x f_hat)).
   const double f = model.top.com_offset;
-  const Eigen::Vector3d a_m = m.a_cm - f * (m.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
+  const Eigen::Vector3d a_m = r.a_cm - f * (r.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
   // The touching shape's gap: g_k'' = n . (a_cm + w' x r_k + w x r_k') in flight (0 in contact, by the constraint).
-  const ShapePoint& p = m.point;
-  const double g_k_acceleration = (m.a_cm + m.omega_dot.cross(p.r) + b.w.cross(p.r_rate)).z();
+  const double g_k_acceleration = (r.a_cm + r.omega_dot.cross(p.r) + b.w.cross(p.r_rate)).z();
   const Eigen::Vector3d f_dot = b.w.cross(figure_axis(y));  // keeps |f_hat| in the exact flow
   dydt[idx::x] = y[idx::u];
   dydt[idx::x + 1] = y[idx::u + 1];
@@ -265,14 +318,45 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
   dydt[idx::u + 1] = a_m.y();
   for (int i = 0; i < 3; ++i) {
     dydt[idx::f + i] = f_dot[i];
-    dydt[idx::omega + i] = m.omega_dot[i];
+    dydt[idx::omega + i] = r.omega_dot[i];
   }
   dydt[idx::nu] = 0.0;
-  dydt[idx::w_diss] = m.dissipation;
+  dydt[idx::w_diss] = r.dissipation;
   // In contact the touching shape's gap and its rate stay exactly 0 (no drift to correct), as the tip sphere's.
   dydt[idx::gap] = mode == ContactMode::flight ? y[idx::gap_rate] : 0.0;
   dydt[idx::gap_rate] = mode == ContactMode::flight ? g_k_acceleration : 0.0;
   dydt[idx::psi] = spin_phase_rate(b.f_hat, b.w);
+}
+
+}  // namespace
+
+TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const ShapeSet& s = model.shapes;
+  return two_shape_motion(model, {s.shape[s.touching], s.shape[s.second]},
+                          {ContactMode::slipping, ContactMode::slipping}, b.v_cm, b.f_hat, b.w);
+}
+
+void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
+                      ContactForceRecord* record, ShapeMotion* motion) {
+  const BodyView b = body_view(model, y);
+  if (mode != ContactMode::flight && two_touching(model.shapes)) [[unlikely]] {
+    const TwoShapeMotion m = touching_pair_motion(model, y);
+    if (record) {  // the margins read the contact nearer to lifting off (lift = its N)
+      record->force = m.force[m.normal_force[1] < m.normal_force[0] ? 1 : 0];
+      record->drilling_torque = 0.0;
+      record->painleve = m.painleve;
+    }
+    write_derivative(model, mode, y, b, {m.a_cm, m.omega_dot, m.dissipation}, m.point[0], dydt);
+    return;
+  }
+  const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
+  if (record) {
+    record->force = m.force;
+    record->drilling_torque = 0.0;
+    record->painleve = m.painleve;
+  }
+  write_derivative(model, mode, y, b, {m.a_cm, m.omega_dot, m.dissipation}, m.point, dydt);
   if (motion) *motion = m;
 }
 

@@ -199,6 +199,7 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
   last_margins_ = margins_of(model_, mode_, y_);
   lift_armed_ = last_margins_.lift > 0.0;
   transfer_armed_ = last_margins_.transfer > 0.0;
+  touch_armed_ = last_margins_.touch > 0.0;
   if (stopped()) return;
   if (!all_finite(y_)) {
     fail(ContactFault::numerical, describe(ContactFault::numerical, 0.0, t_));

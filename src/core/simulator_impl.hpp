@@ -35,7 +35,7 @@
 namespace top_sim {
 
 // What one sample of the dense output shows; when several show at once, the first in this order is handled.
-enum class Event { none, painleve, lift_off, touchdown, transfer, fallen };
+enum class Event { none, painleve, lift_off, touchdown, second_touchdown, transfer, fallen };
 
 // The first instant in a step at which an event fires, as event_location.cpp found it: what fired, on which of
 // the body's contact shapes (one today, the tip sphere: index 0), and the margins of the sample that showed it.
@@ -91,6 +91,7 @@ class SimulatorImpl {
   ContactModel contact_model_ = ContactModel::point;  // contact_model(model_), set at each restart
   bool closed_flight_ = false;                        // stepper_ is the closed-form flight
   bool lift_armed_ = false, transfer_armed_ = false;  // the margin has been > 0 since the mode began
+  bool touch_armed_ = false;                          // a shape not touching has had a gap > 0 since
   bool layer_kink_at_rest_ = false;  // the slip-onset layer (set at each restart): mu(0) > 0, and its half width
   bool handover_due_ = false;        // auto: a handover found at a regime point, taken by the scan that ran the clock
   std::atomic<bool> has_pending_{false};  // pending_ is not empty (set under the lock; read without it)
@@ -207,6 +208,9 @@ class SimulatorImpl {
   // event_application.cpp
   void apply_event(Event event, const ModeMargins& m);
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
+  void second_touchdown(StateVector& y);
+  void let_go_of_one(StateVector& y);
+  void settle_pair(StateVector& y);
   void select_stepper();
   // regime_clock.cpp
   void run_cadence(double t_end);

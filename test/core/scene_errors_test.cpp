@@ -332,7 +332,7 @@ TEST(SceneErrors, ContactShapes) {
 }
 
 // One sphere in top.shapes is the tip sphere: the same scene as tip_radius and com_offset. A rim runs the point
-// contact's full model; several shapes, and a rim with the tip sphere's other models, are refused for now.
+// contact's full model; more than two shapes, and shapes with the tip sphere's other models, are refused for now.
 TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   const top_sim::Scene listed = scene_from("top: {shapes: [{sphere: {offset: -0.012, radius: 2.0e-3}}]}\n");
   const top_sim::Scene keyed = scene_from("top: {tip_radius: 2.0e-3, com_offset: 0.012}\n");
@@ -341,19 +341,20 @@ TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   EXPECT_EQ(listed.model.shapes.count, 1u);
   EXPECT_EQ(keyed.model.shapes.count, 0u);
   EXPECT_FALSE(top_sim::has_shapes(listed.model));
-  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}, {rim: {offset: 0.004, radius: 0.02}}]}\n",
-               "top.shapes", "2 shapes are not simulated yet", "give one sphere or one rim");
+  expect_error("top: {shapes: [{sphere: {offset: -0.01, radius: 1.5e-3}}, {rim: {offset: 0.004, radius: 0.02}}, "
+               "{sphere: {offset: 0.01, radius: 1e-3}}]}\n",
+               "top.shapes", "3 shapes: at most 2 are simulated", "two in contact at once");
   const std::string disc = "top: {mass: 0.4, inertia_axial: 3.2e-4, inertia_transverse: 1.6e-4, "
                            "shapes: [{rim: {offset: 0, radius: 0.04}}]";
   const top_sim::Scene rim = scene_from(disc + "}\n");
   EXPECT_TRUE(top_sim::has_shapes(rim.model));
   EXPECT_EQ(rim.model.top.tip_radius, 0.0);  // the state's reference point is the centre of mass
   EXPECT_EQ(rim.model.top.com_offset, 0.0);
-  expect_error(disc + ", rotor: {inertia_axial: 1e-5}}\n", "top.rotor", "not with a rim", "point contact's full model");
-  expect_error(disc + "}\ncontact: {patch_radius: 1e-4}\n", "contact.patch_radius", "not with a rim",
+  expect_error(disc + ", rotor: {inertia_axial: 1e-5}}\n", "top.rotor", "not with top.shapes yet", "point contact's full model");
+  expect_error(disc + "}\ncontact: {patch_radius: 1e-4}\n", "contact.patch_radius", "not with top.shapes yet",
                "point contact's full model");
   expect_error(disc + "}\nplane: {inclination: 0}\ninitial: {tilt: 0}\n", "initial.tilt",
                "top.shapes[0], a rim, starts lying flat", "must be >= 1e-04");
-  expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with a rim",
+  expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with top.shapes yet",
                "constrained normal force");
 }
