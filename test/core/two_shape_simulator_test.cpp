@@ -1,0 +1,112 @@
+// A body of two contact shapes in the Simulator (physics.md 13.4): the tippe top handing over from its ball to its
+// stem, a top falling onto its crown and touching on tip and crown, and one of two shapes letting go.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "test_util.hpp"
+#include "top_sim/angular_momentum.hpp"
+#include "top_sim/shape_motion.hpp"
+#include "top_sim/simulator.hpp"
+
+namespace {
+
+using top_sim::ContactShape;
+using top_sim::Simulator;
+
+constexpr std::uint32_t kBall = 1, kStem = 2, kBoth = 3;
+
+// Jellett's integral of a sphere in contact, L . (r n - d f): constant while it alone touches without air or
+// drilling (the contact force's torque about the centre of mass is normal to its lever r_k = d f - r n, and an
+// axisymmetric body's L . (w x f) is 0).
+double jellett_of(const Simulator& sim, const ContactShape& sphere) {
+  const Eigen::Vector3d f = top_sim::figure_axis(sim.state()).normalized();
+  const Eigen::Vector3d arm = sphere.radius * Eigen::Vector3d::UnitZ() - sphere.offset * f;
+  return top_sim::angular_momentum(sim.model(), sim.state()).dot(arm);
+}
+
+// The shipped tippe_top_stem: on its ball (before any hand-over) Jellett's integral of the ball holds, the top turns over, hands over to
+// its stem at a touchdown (an impact: E falls), and ends spinning on the stem alone, where the stem's integral
+// holds; the energy balance holds through every hand-over.
+TEST(TwoShapeSimulator, TippeTopTurnsOverOntoItsStemAndEachSpheresJellettHolds) {
+  Simulator sim(top_sim::load_scene(top_sim_test::scene_path("tippe_top_stem")));
+  const ContactShape ball = sim.model().shapes.shape[0], stem = sim.model().shapes.shape[1];
+  const double j_ball = jellett_of(sim, ball);
+  double ball_drift = 0.0, stem_drift = 0.0, j_stem = NAN;
+  std::uint32_t seen = 0;
+  for (int k = 1; k <= 800; ++k) {
+    sim.advance_to(0.01 * k);
+    const std::uint32_t touching = sim.snapshot().touching;
+    seen |= touching;
+    if (sim.mode_switch_count() == 0) ball_drift = std::max(ball_drift, std::abs(jellett_of(sim, ball) - j_ball));
+    if (sim.time() >= 5.0) {  // well after the last hand-over (about 4 s)
+      ASSERT_EQ(touching, kStem) << sim.time();
+      if (std::isnan(j_stem)) j_stem = jellett_of(sim, stem);
+      stem_drift = std::max(stem_drift, std::abs(jellett_of(sim, stem) - j_stem));
+    }
+  }
+  ASSERT_FALSE(sim.stopped()) << sim.fault_message();
+  EXPECT_LT(ball_drift, 1e-7 * std::abs(j_ball));  // dopri5 at the scene's rtol 1e-8 (default): relative
+  EXPECT_LT(stem_drift, 1e-7 * std::abs(j_stem));
+  EXPECT_LT(top_sim::figure_axis(sim.state()).normalized().z(), -0.9);  // upside down,
+  EXPECT_LT(sim.snapshot().spin, 0.0);  // spinning the other way about its figure axis
+  EXPECT_NE(seen & kStem, 0u);
+  int touchdowns = 0;
+  for (const top_sim::ModeSwitch& s : sim.take_mode_switches()) {
+    EXPECT_LE(s.energy_change, 0.0) << s.t;  // an impact never raises E
+    touchdowns += s.kind == top_sim::ModeSwitchKind::touchdown;
+  }
+  EXPECT_GE(touchdowns, 1);
+  EXPECT_LT(sim.max_energy_residual(), 1e-6);
+}
+
+// A top with a tip sphere and a crown rim, tilted 0.3 rad and barely spinning, falls onto its crown: at the
+// touchdown both take a shared plastic impulse (the crown's alone would press the tip into the plane), and it then
+// touches on tip and crown, its crown's gap held at 0 by the pair's two positive normal forces.
+std::string tip_and_crown(double tilt, double spin) {
+  return "top: {mass: 0.1, inertia_axial: 2.0e-5, inertia_transverse: 3.0e-5, shapes: [{sphere: {offset: -0.02, "
+         "radius: 0.001}}, {rim: {offset: 0.005, radius: 0.025}}]}\n"
+         "plane: {inclination: 0}\nfriction: {law: coulomb, mu: 0.3, regularization_speed: 1.0e-3}\n"
+         "initial: {start: tilted, tilt: " + top_sim_test::num(tilt) + ", spin: " + top_sim_test::num(spin) + "}\n";
+}
+
+TEST(TwoShapeSimulator, FallenTopTouchesOnTipAndCrownWithItsCrownsGapHeld) {
+  Simulator sim(top_sim_test::scene_from(tip_and_crown(0.3, 20.0)));
+  sim.advance_to(0.2);
+  ASSERT_EQ(sim.snapshot().touching, kBoth);
+  const std::vector<top_sim::ModeSwitch> switches = sim.take_mode_switches();
+  ASSERT_EQ(switches.size(), 1u);
+  EXPECT_EQ(switches[0].kind, top_sim::ModeSwitchKind::touchdown);
+  EXPECT_LT(switches[0].energy_change, 0.0);
+  double gap = 0.0;
+  const double t0 = sim.time();
+  for (int k = 1; k <= 100; ++k) {
+    sim.advance_to(t0 + 0.01 * k);
+    ASSERT_EQ(sim.snapshot().touching, kBoth) << sim.time();
+    gap = std::max(gap, std::abs(top_sim::shape_gap(sim.model(), sim.state(), sim.model().shapes.shape[1])));
+  }
+  EXPECT_LT(gap, 1e-9);  // m: the constraint's drift over 1 s
+  const top_sim::TwoShapeMotion m = top_sim::touching_pair_motion(sim.model(), sim.state());
+  EXPECT_GT(m.normal_force[0], 0.0);
+  EXPECT_GT(m.normal_force[1], 0.0);
+  EXPECT_LT(sim.max_energy_residual(), 1e-6);
+  EXPECT_FALSE(sim.stopped()) << sim.fault_message();
+}
+
+// Spinning at 140 rad/s the same top lands on tip and crown and its crown lets go again as its normal force
+// crosses 0: the tip alone carries on slipping (no flight), with the energy balance held.
+TEST(TwoShapeSimulator, CrownLetsGoWhenItsNormalForceCrossesZero) {
+  Simulator sim(top_sim_test::scene_from(tip_and_crown(0.7, 140.0)));
+  sim.advance_to(0.2);
+  const std::vector<top_sim::ModeSwitch> switches = sim.take_mode_switches();
+  ASSERT_EQ(switches.size(), 2u);
+  EXPECT_EQ(switches[0].kind, top_sim::ModeSwitchKind::touchdown);
+  EXPECT_EQ(switches[1].kind, top_sim::ModeSwitchKind::lift_off);
+  EXPECT_EQ(switches[1].to, top_sim::ContactMode::slipping);
+  EXPECT_GT(switches[1].t, switches[0].t);
+  EXPECT_EQ(sim.snapshot().touching, kBall);
+  EXPECT_GT(top_sim::shape_gap(sim.model(), sim.state(), sim.model().shapes.shape[1]), 0.0);
+  EXPECT_LT(sim.max_energy_residual(), 1e-6);
+}
+
+}  // namespace
