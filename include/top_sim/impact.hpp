@@ -32,6 +32,7 @@ struct SecondTouchdown {
   bool bounced = false;      // j bounced off (Newton's restitution, not plastic): flight
   bool painleve = false;     // no admissible impulse (a denominator or the shared impulse's lambda)
   bool frictionless = false; // the shared sliding impulse would have raised E: taken along n alone
+  bool both_tried = false;   // the painleve came from the shared impulse (else from the impact at j alone)
   double denominator = 0.0;  // the failing denominator, or the negative lambda (for the fault message)
 };
 SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t j);

@@ -65,27 +65,30 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
     case Event::second_touchdown:
       second_touchdown(y);
       break;
-    case Event::touchdown: {
-      if (has_shapes(model_)) retouch(model_, y, lowest_shape(model_, y));  // the shape that reached the plane
-      y[idx::gap] = 0.0;
-      const double e0 = mechanical_energy(model_, y);
-      const ImpactResult impact = apply_impact(model_, y);
-      if (impact.painleve) {
-        commit(y, t_);
-        fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
-        return;
-      }
-      ContactMode next = ContactMode::flight;  // a bounce flies again
-      if (impact.plastic) next = close_contact(model_, y).mode;  // Painleve: slipping, reported by the restart
-      const double loss = e0 - mechanical_energy(model_, y);  // an impact never raises E: the loss is booked
-      y[idx::w_diss] += loss;
-      switch_mode(next, ModeSwitchKind::touchdown, -loss);
+    case Event::touchdown:
+      touchdown(y);
       break;
-    }
     default:
       return;
   }
   if (!stopped()) restart(y, t_, false); else commit(y, t_);
+}
+
+// The touchdown after a flight: the impact at the shape that reached the plane, then the closing rule.
+void SimulatorImpl::touchdown(StateVector& y) {
+  if (has_shapes(model_)) retouch(model_, y, lowest_shape(model_, y));  // the shape that reached the plane
+  y[idx::gap] = 0.0;
+  const double e0 = mechanical_energy(model_, y);
+  const ImpactResult impact = apply_impact(model_, y);
+  if (impact.painleve) {
+    fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+    return;
+  }
+  ContactMode next = ContactMode::flight;  // a bounce flies again
+  if (impact.plastic) next = close_contact(model_, y).mode;  // Painleve: slipping, reported by the restart
+  const double loss = e0 - mechanical_energy(model_, y);  // an impact never raises E: the loss is booked
+  y[idx::w_diss] += loss;
+  switch_mode(next, ModeSwitchKind::touchdown, -loss);
 }
 
 // A shape not touching reaches the plane while one touches (apply_second_touchdown): afterwards both touch and
@@ -100,7 +103,11 @@ void SimulatorImpl::second_touchdown(StateVector& y) {
   const double e0 = mechanical_energy(model_, y);
   const SecondTouchdown impact = apply_second_touchdown(model_, y, j);
   if (impact.painleve) {
-    fail(ContactFault::painleve, impact_painleve_message(t_, impact.denominator));
+    const std::string shared = "t = " + format_number(t_) + " s: Painleve at the impact of top.shapes[" +
+                               std::to_string(j) + "] with top.shapes[" + std::to_string(model_.shapes.touching) +
+                               "] touching: no plastic impulse pair with both normal parts >= 0 (" +
+                               format_number(impact.denominator) + "); reduce the friction";
+    fail(ContactFault::painleve, impact.both_tried ? shared : impact_painleve_message(t_, impact.denominator));
     return;
   }
   ContactMode next = ContactMode::slipping;

@@ -108,6 +108,7 @@ SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t
     return out;
   }
   model.shapes.touching = k;  // k stays the state's shape; j joins it
+  out.both_tried = true;
   const double e0 = shape_mechanical_energy(model, y);
   StateVector shared = y;
   if (!shared_impulse(model, shared, j, k, false, out.denominator) ||

@@ -109,6 +109,23 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   return out;
 }
 
+namespace {
+
+// The pair's d/dt (v_1, v_2) = K (F_1, F_2) - b, rolling resistance's couple in K's normal columns.
+void pair_response(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w, const FreeMotion& free,
+                   const std::array<ShapePoint, 2>& p, const Eigen::Vector3d& Ii_tau, Eigen::Matrix<double, 6, 6>& K,
+                   Eigen::Matrix<double, 6, 1>& b) {
+  for (int k = 0; k < 2; ++k) {
+    b.segment<3>(3 * k) = response_bias(free, p[k], w);
+    for (int j = 0; j < 2; ++j) {
+      K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
+      K.block<3, 1>(3 * k, 3 * j + 2) -= p[k].r.cross(Ii_tau);
+    }
+  }
+}
+
+}  // namespace
+
 TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
                                 const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
                                 const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
@@ -121,13 +138,7 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
   const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
   Eigen::Matrix<double, 6, 6> K;
   Eigen::Matrix<double, 6, 1> b;
-  for (int k = 0; k < 2; ++k) {
-    b.segment<3>(3 * k) = response_bias(free, p[k], w);
-    for (int j = 0; j < 2; ++j) {
-      K.block<3, 3>(3 * k, 3 * j) = cross_response(top, f_hat, p[k].r, p[j].r);
-      if (delta > 0.0) K.block<3, 1>(3 * k, 3 * j + 2) -= p[k].r.cross(Ii_tau);
-    }
-  }
+  pair_response(top, f_hat, w, free, p, Ii_tau, K, b);
   // Unknowns: F_k of a stuck contact, N_k of a slipping one (F_k = N_k d_k); rows: all of v_k' = 0 stuck, n . v_k' = 0
   // slipping. F = B z, rows C: (C K B) z = C b.
   TwoShapeMotion out;

@@ -208,6 +208,7 @@ class SimulatorImpl {
   // event_application.cpp
   void apply_event(Event event, const ModeMargins& m);
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
+  void touchdown(StateVector& y);
   void second_touchdown(StateVector& y);
   void let_go_of_one(StateVector& y);
   void settle_pair(StateVector& y);
