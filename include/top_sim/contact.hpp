@@ -51,8 +51,8 @@ enum class ContactFault { none, painleve, fallen, numerical };
 const char* to_string(ContactFault fault);
 
 // Ends of a run that are no fault (physics.md section 13): the run stops there and says so.
-enum class EndState { none, lying_flat };
-constexpr int kEndStateCount = 2;  // adapters read a recorded name back over these codes
+enum class EndState { none, lying_flat, at_rest };
+constexpr int kEndStateCount = 3;  // adapters read a recorded name back over these codes
 
 const char* to_string(EndState state);
 std::string describe(EndState state, double margin, double t);

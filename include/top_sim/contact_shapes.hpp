@@ -3,7 +3,9 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstddef>
 
 
@@ -52,6 +54,19 @@ constexpr double kFlatRimSine = 1e-9;
 // The tilt's sine at which a rolling rim's run ends, lying flat (a named end state, not a fault): at 1e-4 a disc of
 // 40 mm has its edge 4 um above the plane and circles at Omega = sqrt(4 g / (a s)) = 3.1e3 rad/s.
 constexpr double kFlatEndSine = 1e-4;
+
+// A body touching on two shapes is at rest (the end state at_rest, physics.md 13.3) when its centre of mass and its
+// shapes' reach move slower than the stick speed and accelerate at less than this fraction of g: the turning point
+// of a rocking body is slow but not unaccelerated.
+constexpr double kRestAcceleration = 1e-3;
+
+// The farthest any shape reaches from the centre of mass, max |d| + r.
+inline double shapes_reach(const ShapeSet& shapes) {
+  double reach = 0.0;
+  for (std::size_t k = 0; k < shapes.count; ++k)
+    reach = std::max(reach, std::abs(shapes.shape[k].offset) + shapes.shape[k].radius);
+  return reach;
+}
 
 // h(c) with c = n . f_hat: d c - r for a sphere, d c - rho sqrt(1 - c^2) for a rim.
 double shape_height(const ContactShape& shape, double c);

@@ -22,10 +22,11 @@ struct ImpactResult {
 // Applies the impact to y (u including the gap rate, omega, nu); W_diss is booked by the caller.
 ImpactResult apply_impact(const Model& model, StateVector& y);
 
-// A second shape j reaching the plane while the touching shape k stays on it (physics.md 13.4): first the impact at
-// j alone (section 9's, j made the touching shape); if it leaves k separating or at rest it stands, and k lets go;
-// else both take a plastic sliding impulse P_i = lambda_i (n - mu_i t_hat_i-), lambda solved from n . v_j+ =
-// n . v_k+ = 0 (an impulse at j that would press k into the plane is shared). Sets model.shapes (touching, second)
+// A second shape j reaching the plane while the touching shape k stays on it (physics.md 13.3): first the impact at
+// j alone (section 9's, j made the touching shape); if it leaves k separating at v_settle or faster it stands, and k
+// lets go; else both take a plastic sliding impulse P_i = lambda_i (n - mu_i t_hat_i-), lambda solved from
+// n . v_j+ = n . v_k+ = 0 (an impulse at j that would press k into the plane is shared; k, which j's impulse would
+// leave slower than v_settle, is held, its impulse pulling by at most that: section 9's settle rule at two shapes). Sets model.shapes (touching, second)
 // to what touches after it; W_diss is booked by the caller.
 struct SecondTouchdown {
   bool both = false;         // j and k in contact after it (else j alone, or flight when j bounced)

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdint>
 
+#include "top_sim/contact.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
 #include "top_sim/dynamics.hpp"
@@ -70,6 +71,10 @@ Eigen::Vector3d shape_body_com(const Model& model, const StateVector& y);
 Eigen::Vector3d shape_body_com_velocity(const Model& model, const StateVector& y);
 // Makes `shape` the touching one: the state's gap and gap_rate become its own (the body does not move).
 void retouch(Model& model, StateVector& y, std::size_t shape);
+// The end state the tilt slot's margin stands for in contact: at_rest on two shapes, else lying_flat (a rim).
+inline EndState shape_end_state(const Model& model) {
+  return two_touching(model.shapes) ? EndState::at_rest : EndState::lying_flat;
+}
 // Snapshot::touching: bit i set while shape i of top.shapes touches (a body without shapes: its tip sphere, bit 0);
 // none in flight.
 std::uint32_t touching_shapes(const Model& model, ContactMode mode);

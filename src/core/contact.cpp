@@ -43,7 +43,14 @@ std::string describe(ContactFault fault, double value, double t) {
 
 namespace top_sim {
 
-const char* to_string(EndState state) { return state == EndState::lying_flat ? "lying_flat" : "none"; }
+const char* to_string(EndState state) {
+  switch (state) {
+    case EndState::lying_flat: return "lying_flat";
+    case EndState::at_rest: return "at_rest";
+    case EndState::none: break;
+  }
+  return "none";
+}
 
 std::string describe(EndState state, double margin, double t) {
   std::ostringstream os;
@@ -51,6 +58,9 @@ std::string describe(EndState state, double margin, double t) {
   if (state == EndState::lying_flat)
     os << "end state lying_flat: the rim lies flat (the tilt's sine is " << format_number(margin + kFlatEndSine)
        << ", below " << format_number(kFlatEndSine) << ")";
+  else if (state == EndState::at_rest)
+    os << "end state at_rest: the body rests on two shapes (its speeds and accelerations are below the rest "
+          "thresholds, margin " << format_number(margin) << ")";
   else
     os << "no end state";
   return os.str();

@@ -445,6 +445,15 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
 
 namespace {
 
+// Two shapes touching: > 0 while the body moves or accelerates (the tilt slot's end state at_rest when < 0).
+double rest_margin(const Model& model, const StateVector& y) {
+  const TwoShapeMotion m = touching_pair_motion(model, y);
+  const double reach = shapes_reach(model.shapes);
+  const double speed = std::max(shape_body_com_velocity(model, y).norm(), angular_velocity(y).norm() * reach);
+  const double acceleration = std::max(m.a_cm.norm(), m.omega_dot.norm() * reach);
+  return std::max(speed / model.contact.stick_speed, acceleration / (kRestAcceleration * model.plane.gravity)) - 1.0;
+}
+
 // A body with shapes: in flight the least gap of its shapes is the touchdown's margin; on a rim, the tilt's sine
 // above kFlatEndSine is the margin of the flat end (the tilt margin's slot: its event ends the run).
 [[gnu::noinline]] void shape_margins(const Model& model, ContactMode mode, const StateVector& y, ModeMargins& mg) {
@@ -458,6 +467,7 @@ namespace {
   mg.touch = free_shape_gap(model, y, free_shape);
   if (two_touching(model.shapes)) {  // no stick at two contacts (both slip: physics.md 13.4); no flat end either
     mg.transfer = ModeMargins::kNone;
+    mg.tilt = rest_margin(model, y);
     return;
   }
   if (model.shapes.shape[model.shapes.touching].kind == ShapeKind::rim) {

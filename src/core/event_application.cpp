@@ -14,6 +14,10 @@ namespace top_sim {
 namespace {
 
 constexpr int kMaxInstantSwitches = 100;  // mode switches at one instant before the Zeno guard stops the run
+// Event clustering: more than this many switches, each within kClusterGap of the one before, stop the run with a
+// named fault (contacts chattering faster than any motion they stand for) instead of stepping ever shorter.
+constexpr int kMaxClusteredSwitches = 1000;
+constexpr double kClusterGap = 1e-6;  // s
 
 std::string impact_painleve_message(double t, double denominator) {
   std::ostringstream os;
@@ -33,8 +37,8 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
     case Event::fallen:
-      if (has_shapes(model_)) {  // a rim lying flat: the disc's end (shape_margins, dynamics.cpp)
-        end(EndState::lying_flat, m.tilt);
+      if (has_shapes(model_)) {  // a rim lying flat, a body at rest on two shapes (shape_margins, dynamics.cpp)
+        end(shape_end_state(model_), m.tilt);
         return;
       }
       fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
@@ -147,7 +151,16 @@ void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double en
   ++switch_count_;
   mode_ = mode;
   instant_switches_ = t_ - last_switch_t_ > 1e-12 * std::max(1.0, std::abs(t_)) ? 0 : instant_switches_ + 1;
+  clustered_switches_ = t_ - last_switch_t_ > kClusterGap ? 0 : clustered_switches_ + 1;
   last_switch_t_ = t_;
+  if (clustered_switches_ > kMaxClusteredSwitches) {
+    std::ostringstream os;
+    os << describe(ContactFault::numerical, 0.0, t_) << " (event clustering: " << clustered_switches_
+       << " contact-mode switches each within " << kClusterGap << " s of the last, last " << to_string(kind)
+       << " to " << to_string(mode) << ")";
+    fail(ContactFault::numerical, os.str());
+    return;
+  }
   if (instant_switches_ > kMaxInstantSwitches) {
     std::ostringstream os;
     os << describe(ContactFault::numerical, 0.0, t_) << " (" << instant_switches_

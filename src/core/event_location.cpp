@@ -6,6 +6,7 @@
 
 #include "simulator_impl.hpp"
 #include "top_sim/format.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -159,8 +160,14 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
   if (model_.kind != ModelKind::full) return Event::none;
   if (m.painleve <= 0.0) return Event::painleve;
   if (mode_ == ContactMode::flight) {
-    // Touchdown: the gap is down to 0 while closing; a flight starts at gap 0 with a non-negative rate.
-    if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) return Event::touchdown;
+    // Touchdown: the gap is down to 0 while closing; a flight starts at gap 0 with a non-negative rate. A body of
+    // shapes touches down with whichever shape's gap reaches 0 first (the lift margin is the least gap).
+    if (has_shapes(model_)) [[unlikely]] {
+      if (m.lift <= 0.0 && shape_gap_rate(model_, y, model_.shapes.shape[lowest_shape(model_, y)]) < 0.0)
+        return Event::touchdown;
+    } else if (y[idx::gap] <= 0.0 && y[idx::gap_rate] < 0.0) {
+      return Event::touchdown;
+    }
   } else if (lift_armed_ && m.lift < 0.0) {
     return Event::lift_off;
   } else if (touch_armed_ && m.touch <= 0.0) {

@@ -80,7 +80,9 @@ bool shared_impulse(const Model& model, StateVector& y, std::size_t j, std::size
   bad = std::min({A(0, 0), A(1, 1), A.determinant()});
   if (!(bad > 0.0)) return false;
   const Eigen::Vector2d lambda = A.partialPivLu().solve(-v_n);
-  bad = lambda.minCoeff();
+  // The settle rule at two shapes: k, which j's impulse would leave separating slower than v_settle, is held; its
+  // impulse may then pull, by at most what changes its normal velocity by v_settle.
+  bad = std::min(lambda[0], lambda[1] * A(1, 1) + model.contact.settle_speed);
   if (!(bad >= 0.0)) return false;
   apply_shape_impulse(model, j, lambda[0] * d_j, y);
   apply_shape_impulse(model, k, lambda[1] * d_k, y);
@@ -102,7 +104,8 @@ SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t
     out.denominator = impact.denominator;
     return out;
   }
-  if (shape_gap_rate(model, alone, model.shapes.shape[k]) >= 0.0) {  // k separates (or stays at rest): j alone
+  const double rate_k = shape_gap_rate(model, alone, model.shapes.shape[k]);
+  if (rate_k >= model.contact.settle_speed) {  // k separates: j alone
     y = alone;
     out.bounced = !impact.plastic;
     return out;
@@ -116,6 +119,12 @@ SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t
     shared = y;
     out.frictionless = true;
     if (!shared_impulse(model, shared, j, k, true, out.denominator)) {
+      if (rate_k >= 0.0) {  // no pair holds, and k leaves: j alone
+        model.shapes.touching = j;  // alone's gap is j's
+        y = alone;
+        out = SecondTouchdown{};
+        return out;
+      }
       out.painleve = true;
       return out;
     }

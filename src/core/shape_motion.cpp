@@ -388,9 +388,7 @@ double shape_mechanical_energy(const Model& model, const StateVector& y) {
 }
 
 double shape_energy_scale(const Model& model, const StateVector& y) {
-  double reach = 0.0;
-  for (std::size_t k = 0; k < model.shapes.count; ++k)
-    reach = std::max(reach, std::abs(model.shapes.shape[k].offset) + model.shapes.shape[k].radius);
+  const double reach = shapes_reach(model.shapes);
   const BodyView b = body_view(model, y);
   const double kinetic = shape_body_energy(model, Eigen::Vector3d::Zero(), b.v_cm, b.f_hat, b.w);
   return kinetic + model.top.mass * model.plane.gravity * reach;

@@ -159,6 +159,7 @@ void SimulatorImpl::reset() {
   switches_.clear();
   switch_count_ = 0;
   instant_switches_ = 0;
+  clustered_switches_ = 0;
   last_switch_t_ = -1.0;
   // A stick impulse here is part of the initial state; a Painleve state comes back as slipping, and restart()
   // reports it from the slipping margins.
@@ -207,7 +208,7 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
     if (last_margins_.painleve <= 0.0)
       fail(ContactFault::painleve, describe(ContactFault::painleve, last_margins_.painleve, t_));
     else if (last_margins_.tilt < 0.0 && has_shapes(model_))
-      end(EndState::lying_flat, last_margins_.tilt);
+      end(shape_end_state(model_), last_margins_.tilt);
     else if (last_margins_.tilt < 0.0)
       fail(ContactFault::fallen, describe(ContactFault::fallen, last_margins_.tilt, t_));
   }

@@ -137,6 +137,7 @@ class SimulatorImpl {
   std::vector<ModeSwitch> switches_;
   std::uint64_t switch_count_ = 0;
   int instant_switches_ = 0;  // consecutive switches without time advancing (Zeno guard)
+  int clustered_switches_ = 0;  // consecutive switches each within 1 us of the last (clustering guard)
   double last_switch_t_ = -1.0;
 
   // regime_clock.cpp: the last point's regime (the hysteresis of classify()), and the seconds in each regime.

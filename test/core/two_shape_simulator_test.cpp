@@ -110,3 +110,27 @@ TEST(TwoShapeSimulator, CrownLetsGoWhenItsNormalForceCrossesZero) {
 }
 
 }  // namespace
+
+namespace {
+
+// The shipped top_life: from 200 rad/s it spins down under air, falls onto its crown (one touchdown at the crown,
+// then the pair settles within microseconds: no clustering), rolls on tip and crown and ends at rest on them: the
+// named end state at_rest, no fault, both shapes touching, the crown's gap held, the energy balance within 1e-7.
+TEST(TwoShapeSimulator, TopLifeFallsOntoItsCrownAndComesToRestOnTipAndCrown) {
+  Simulator sim(top_sim::load_scene(top_sim_test::scene_path("top_life")));
+  sim.advance_to(sim.scene().duration);
+  ASSERT_EQ(sim.fault(), top_sim::ContactFault::none) << sim.fault_message();
+  ASSERT_EQ(sim.end_state(), top_sim::EndState::at_rest) << sim.fault_message();
+  EXPECT_LT(sim.time(), sim.scene().duration);
+  EXPECT_EQ(sim.snapshot().touching, kBoth);
+  EXPECT_LT(std::abs(top_sim::shape_gap(sim.model(), sim.state(), sim.model().shapes.shape[1])), 1e-8);  // m, after 40 s on both
+  EXPECT_LT(sim.snapshot().com_velocity.norm(), sim.model().contact.stick_speed);
+  EXPECT_LT(top_sim::angular_velocity(sim.state()).norm() * 0.021, sim.model().contact.stick_speed);  // reach 21 mm
+  const std::vector<top_sim::ModeSwitch> switches = sim.take_mode_switches();
+  ASSERT_GE(switches.size(), 1u);
+  EXPECT_GT(switches.front().t, 10.0);  // it sleeps first
+  EXPECT_LT(switches.back().t - switches.front().t, 1e-3);  // the fall's events settle at once
+  EXPECT_LT(sim.max_energy_residual(), 1e-7);
+}
+
+}  // namespace

@@ -717,7 +717,7 @@ TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
   EXPECT_EQ(error, "");
   m.end_state = "lying_down";
   top_sim_ros::to_snapshot(m, error);
-  EXPECT_EQ(error, "end_state = 'lying_down': must be empty or one of lying_flat");
+  EXPECT_EQ(error, "end_state = 'lying_down': must be empty or one of lying_flat, at_rest");
   m.end_state = "";
   EXPECT_EQ(top_sim_ros::to_snapshot(m, error).end_state, top_sim::EndState::none);
   EXPECT_EQ(error, "");
