@@ -485,8 +485,9 @@ int main(int argc, char** argv) {
   top_sim::Scene scene;
   if (!load(args.scene_path, scene)) return 2;
   if (top_sim::has_shapes(scene.model)) {  // one sphere in top.shapes is the tip sphere and has_shapes is false
-    std::cerr << "top_sim_stability: top.shapes: a body with a rim has no sleeping state on its tip sphere to "
-                 "analyse (physics.md sections 10 and 13: the linear stability covers a tip sphere only)\n";
+    std::cerr << "top_sim_stability: top.shapes: a body with a rim or with two shapes is not analysed (physics.md "
+                 "sections 10 and 13: the linear stability covers a tip sphere only, whose sleeping state a second "
+                 "shape could touch)\n";
     return 2;
   }
   const double spin = args.spin.value_or(scene.initial.spin);

@@ -69,10 +69,12 @@ TEST(StabilityCli, NoSleepingStateExitsThreeWithTheReason) {
 
 // A body with a rim (Euler's disk) is refused naming top.shapes and why, exit 2, not analysed as if a tip sphere.
 TEST(StabilityCli, BodyWithARimIsRefusedNamingTopShapes) {
-  const CliResult r = run(scene("euler_disk"));
-  EXPECT_EQ(r.exit_code, 2) << r.err;
-  EXPECT_TRUE(contains(r.err, "top.shapes")) << r.err;
-  EXPECT_TRUE(contains(r.err, "tip sphere only")) << r.err;
+  for (const char* name : {"euler_disk", "tippe_top_stem"}) {  // a rim; two spheres
+    const CliResult r = run(scene(name));
+    EXPECT_EQ(r.exit_code, 2) << name << r.err;
+    EXPECT_TRUE(contains(r.err, "top.shapes")) << r.err;
+    EXPECT_TRUE(contains(r.err, "tip sphere only")) << r.err;
+  }
 }
 
 TEST(StabilityCli, JsonHasExactlyTheDocumentedFields) {
