@@ -262,9 +262,10 @@ std::uint32_t touching_shapes(const Model& model, ContactMode mode) {
 }
 
 double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape) {
-  const BodyView b = body_view(model, y);
   double least = ModeMargins::kNone;
   shape = kNoShape;
+  if (model.shapes.count < 2) return least;  // one shape: it touches
+  const BodyView b = body_view(model, y);
   for (std::size_t k = 0; k < model.shapes.count; ++k) {
     if (k == model.shapes.touching || k == model.shapes.second) continue;
     const double gap = b.z_cm + shape_height(model.shapes.shape[k], b.f_hat.z());
