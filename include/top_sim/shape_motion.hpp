@@ -12,6 +12,7 @@
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/finite_contact.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"
 
@@ -30,8 +31,14 @@ struct ShapeMotion {
   double slip = 0.0;         // s of section 3, with the contact point's own velocity v_cm + r_k' for u
   double dissipation = 0.0;  // mu N t_hat . v_t while slipping (rolling does no work), and what air takes
   double painleve = ModeMargins::kNone;  // slipping: m n . K d (the fault where <= 0)
+  double patch_radius = 0.0;             // a of the shape's patch (section 12), 0 without one
+  double drilling_torque = 0.0;          // M_n about n of the patch
   ShapePoint point;                      // the lowest point it acts at, and its rate
 };
+
+// The patch radius at a shape's contact under normal force N (section 12): a sphere's is its own Hertz radius or the
+// given contact.patch_radius; a rim is a sharp edge, so its Hertz patch is 0 (a given patch_radius applies to it too).
+double shape_patch_radius(const FiniteContact& contact, const ContactShape& shape, double normal_force);
 
 // f_hat of unit length; a rim not lying flat (contact_shapes.hpp).
 ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
@@ -45,6 +52,7 @@ struct TwoShapeMotion {
   std::array<Eigen::Vector3d, 2> force{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<Eigen::Vector3d, 2> v_t{Eigen::Vector3d::Zero(), Eigen::Vector3d::Zero()};
   std::array<double, 2> normal_force{0.0, 0.0}, mu{0.0, 0.0}, slip{0.0, 0.0};
+  std::array<double, 2> patch_radius{0.0, 0.0}, drilling_torque{0.0, 0.0};  // each slipping contact's patch
   Eigen::Vector3d a_cm = Eigen::Vector3d::Zero();
   Eigen::Vector3d omega_dot = Eigen::Vector3d::Zero();
   double dissipation = 0.0;

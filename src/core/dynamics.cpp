@@ -6,7 +6,7 @@
 #include <cmath>
 #include <type_traits>
 
-#include "exact_law_table.hpp"
+#include "patch_law.hpp"
 #include "rigid_body.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/angular_momentum.hpp"
@@ -73,29 +73,6 @@ Eigen::Vector3d rolling_resistance_per_newton(const Model& model, const detail::
   const double delta = model.finite_contact.rolling_resistance;
   if (delta == 0.0) return Eigen::Vector3d::Zero();
   return top_sim::rolling_resistance_per_newton(delta, b.w);
-}
-
-// The coupled law of section 12 per newton of normal force at lever Rbar: F / N = -force_per_speed v_t and
-// M_n / N = drilling, with s the generalised slip. Inline: a Hertz patch evaluates it twice per right-hand side.
-struct PatchLaw {
-  double slip, mu, force_per_speed, drilling, force_factor_per_speed;
-};
-[[gnu::always_inline]] inline PatchLaw patch_law(const Model& model, double lever, double slip_speed, double omega_n,
-                                                 double speed_sum) {
-  const double v_eps = model.regularization_speed;
-  const double wy = lever * omega_n, pivot = std::abs(wy), w2 = slip_speed * slip_speed + wy * wy;
-  const double inverse_w = 1.0 / std::sqrt(w2 + v_eps * v_eps);
-  PatchLaw law;
-  law.slip = std::sqrt(w2) / (speed_sum + pivot);
-  law.mu = friction_coefficient(model.friction, law.slip);
-  const FiniteContact& fc = model.finite_contact;
-  const DrillingFactors k = fc.law == DrillingLaw::exact
-                                ? exact_law::factors(exact_law::table(fc.pressure), slip_speed, pivot)
-                                : DrillingFactors{};
-  law.force_factor_per_speed = k.force * inverse_w;
-  law.force_per_speed = law.mu * law.force_factor_per_speed;
-  law.drilling = -law.mu * lever * k.torque * wy * inverse_w;
-  return law;
 }
 
 // Slipping on a finite contact: F = N d, couple = N (M_n n + tau_r) with the coupled law of section 12; N keeps
@@ -285,6 +262,9 @@ void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVec
   out.dissipation = m.dissipation;
   out.contact.v_t = m.v_t[0];
   out.contact.slip = m.slip[0];
+  out.patch_radius = m.patch_radius[0];  // the touching shape's patch; M_n about n of both
+  out.drilling_torque = m.drilling_torque[0] + m.drilling_torque[1];
+  out.couple.z() = out.drilling_torque;
   out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
   out.psi_dot = dydt[idx::psi];
   margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins);
@@ -306,9 +286,12 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.dissipation = m.dissipation;
   out.contact.v_t = m.v_t;
   out.contact.slip = m.slip;
+  out.patch_radius = m.patch_radius;
+  out.drilling_torque = m.drilling_torque;
+  out.couple.z() = m.drilling_torque;
   out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
   out.psi_dot = dydt[idx::psi];
-  const ContactForceRecord record{m.force, 0.0, m.painleve};
+  const ContactForceRecord record{m.force, m.drilling_torque, m.painleve};
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
   const Eigen::Vector3d F = shape_motion(model, ContactMode::rolling, y).force;  // with its rolling resistance
   const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);

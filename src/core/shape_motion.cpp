@@ -8,10 +8,12 @@
 #include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 
 #include "top_sim/finite_contact.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/orientation.hpp"
+#include "patch_law.hpp"
 
 namespace top_sim {
 
@@ -25,14 +27,17 @@ Eigen::Vector3d inverse_inertia(const Top& top, const Eigen::Vector3d& f_hat, co
 
 // The slip of section 3 and the friction direction: u is the contact point's own velocity v_cm + r_k', and the
 // rolling speed the part of it the rotation carries, |r_k' - w x r_k| (R |w x n| for a sphere).
-void slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& w, const ShapePoint& p,
-                       ShapeMotion& out, Eigen::Vector3d& t_hat) {
+// Returns the slip's denominator |u| + rolling speed + v_eps (a patch adds its pivoting speed to it).
+double slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& w, const ShapePoint& p,
+                         ShapeMotion& out, Eigen::Vector3d& t_hat) {
   const double v_eps = model.regularization_speed;
   const Eigen::Vector3d v_c = v_cm + w.cross(p.r), u = v_cm + p.r_rate, rolling = p.r_rate - w.cross(p.r);
   out.v_t = Eigen::Vector3d(v_c.x(), v_c.y(), 0.0);
   const double vt = out.v_t.norm();
-  out.slip = vt / (std::hypot(u.x(), u.y()) + std::hypot(rolling.x(), rolling.y()) + v_eps);
+  const double speed_sum = std::hypot(u.x(), u.y()) + std::hypot(rolling.x(), rolling.y()) + v_eps;
+  out.slip = vt / speed_sum;
   t_hat = out.v_t / std::sqrt(vt * vt + v_eps * v_eps);
+  return speed_sum;
 }
 
 // d/dt v_c's bias b = -(g + r x I^-1 G + w x r') at one contact, and I^-1 G.
@@ -73,7 +78,41 @@ Eigen::Matrix3d cross_response(const Top& top, const Eigen::Vector3d& f_hat, con
   return K;
 }
 
+// One shape slipping on its patch (physics.md section 12 at the shape's lowest point): F = N d with
+// d = n - (F_t per N |v_t|) v_t and the drilling couple N M_n n, which moves the contact by -r x I^-1 (M_n n) per
+// newton of N. A Hertz patch depends on N: a first pass takes a from the weight's normal part, the second from that
+// pass's N (as the tip sphere's, dynamics.cpp). Sets force, N, mu, slip, Painleve, the drilling torque and the
+// contact's dissipation. `g` is the centre of mass's free acceleration (gravity and air).
+void slipping_on_patch(const Model& model, const ContactShape& shape, const Eigen::Matrix3d& K,
+                       const Eigen::Vector3d& b, const Eigen::Vector3d& g, const Eigen::Vector3d& w,
+                       const Eigen::Vector3d& f_hat, double speed_sum, ShapeMotion& out) {
+  const FiniteContact& fc = model.finite_contact;
+  const Eigen::Vector3d r_x_Ii_n = out.point.r.cross(inverse_inertia(model.top, f_hat, Eigen::Vector3d::UnitZ()));
+  const double vt = out.v_t.norm(), omega_n = w.z();
+  double N = -model.top.mass * g.z();
+  PatchLaw law;
+  for (int pass = fc.hertz ? 0 : 1; pass < 2; ++pass) {
+    out.patch_radius = shape_patch_radius(fc, shape, N);
+    law = patch_law(model, drilling_lever(fc.pressure, out.patch_radius), vt, omega_n, speed_sum);
+    const Eigen::Vector3d d = Eigen::Vector3d::UnitZ() - law.force_per_speed * out.v_t;
+    const double n_Kd = K.row(2).dot(d) - law.drilling * r_x_Ii_n.z();
+    out.painleve = model.top.mass * n_Kd;
+    N = b.z() / n_Kd;
+    out.force = N * d;
+  }
+  out.normal_force = N;
+  out.mu = law.mu;
+  out.slip = law.slip;
+  out.drilling_torque = N * law.drilling;
+  out.dissipation = N * law.force_per_speed * out.v_t.squaredNorm() - out.drilling_torque * omega_n;
+}
+
 }  // namespace
+
+double shape_patch_radius(const FiniteContact& contact, const ContactShape& shape, double normal_force) {
+  if (contact.hertz && shape.kind == ShapeKind::rim) return 0.0;  // a sharp edge: Hertz's radius of curvature is 0
+  return patch_radius(contact, shape.radius, normal_force);
+}
 
 ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactMode mode, const Eigen::Vector3d& v_cm,
                          const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
@@ -84,13 +123,15 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   Eigen::Vector3d t_hat;
   ShapeMotion out;
   out.point = p;
-  slip_and_friction(model, v_cm, w, p, out, t_hat);
+  const double speed_sum = slip_and_friction(model, v_cm, w, p, out, t_hat);
   // Rolling resistance (section 12): the couple N tau_r adds -r x I^-1 tau_r to d/dt v_k per newton of N.
   const double delta = mode == ContactMode::flight ? 0.0 : model.finite_contact.rolling_resistance;
   const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
   Eigen::Matrix3d K = cross_response(top, f_hat, p.r, p.r);
   if (delta > 0.0) K.col(2) -= p.r.cross(inverse_inertia(top, f_hat, tau_r));
-  if (mode == ContactMode::slipping) {
+  if (mode == ContactMode::slipping && model.finite_contact.has_patch()) {
+    slipping_on_patch(model, shape, K, b, free.g, w, f_hat, speed_sum, out);
+  } else if (mode == ContactMode::slipping) {
     out.mu = friction_coefficient(model.friction, out.slip);
     const Eigen::Vector3d d = Eigen::Vector3d::UnitZ() - out.mu * t_hat;
     const double n_Kd = K.row(2).dot(d);
@@ -104,7 +145,8 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
     out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
   }
   out.a_cm = free.g + out.force / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force) + out.normal_force * tau_r) - free.Ii_G;
+  const Eigen::Vector3d couple = out.normal_force * tau_r + Eigen::Vector3d(0.0, 0.0, out.drilling_torque);
+  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force) + couple) - free.Ii_G;
   out.dissipation += free.air_power - out.normal_force * tau_r.dot(w);
   return out;
 }
@@ -126,28 +168,25 @@ void pair_response(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Ve
 
 }  // namespace
 
-TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
-                                const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
-                                const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
+namespace {
+
+// A pair with a stuck contact (no Simulator mode yet: physics.md 13.4): unknowns F_k of a stuck contact, N_k of a
+// slipping one (F_k = N_k d_k); rows all of v_k' = 0 stuck, n . v_k' = 0 slipping. F = B z, rows C: (C K B) z = C b,
+// least-norm where both are stuck (the free rotation about the line between the contacts leaves one part open).
+void stuck_pair(const Model& model, const FreeMotion& free, const Eigen::Vector3d& tau_r,
+                const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
+                const Eigen::Vector3d& w, TwoShapeMotion& out) {
   const Top& top = model.top;
-  const std::array<ShapePoint, 2> p{shape_point(shapes[0], f_hat, w), shape_point(shapes[1], f_hat, w)};
-  const FreeMotion free = free_motion(model, v_cm, f_hat, w);
-  // Rolling resistance (section 12) at each contact: N_j tau_r moves every contact k by -r_k x I^-1 tau_r per newton.
-  const double delta = model.finite_contact.rolling_resistance;
-  const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
   const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
   Eigen::Matrix<double, 6, 6> K;
   Eigen::Matrix<double, 6, 1> b;
-  pair_response(top, f_hat, w, free, p, Ii_tau, K, b);
-  // Unknowns: F_k of a stuck contact, N_k of a slipping one (F_k = N_k d_k); rows: all of v_k' = 0 stuck, n . v_k' = 0
-  // slipping. F = B z, rows C: (C K B) z = C b.
-  TwoShapeMotion out;
+  pair_response(top, f_hat, w, free, out.point, Ii_tau, K, b);
   Eigen::Matrix<double, 6, Eigen::Dynamic> B = Eigen::Matrix<double, 6, Eigen::Dynamic>::Zero(6, 0);
   Eigen::Matrix<double, Eigen::Dynamic, 6> C = Eigen::Matrix<double, Eigen::Dynamic, 6>::Zero(0, 6);
   for (int k = 0; k < 2; ++k) {
     ShapeMotion one;
     Eigen::Vector3d t_hat;
-    slip_and_friction(model, v_cm, w, p[k], one, t_hat);
+    slip_and_friction(model, v_cm, w, out.point[k], one, t_hat);
     out.v_t[k] = one.v_t;
     out.slip[k] = one.slip;
     const bool stuck = modes[k] == ContactMode::rolling;
@@ -176,14 +215,99 @@ TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShap
     else if (out.normal_force[k] > 0.0)
       out.mu[k] = std::hypot(out.force[k].x(), out.force[k].y()) / out.normal_force[k];
   }
-  if (A.rows() == 2 && A.cols() == 2)
-    out.painleve = top.mass * std::min({A(0, 0), A(1, 1), A.determinant() / (A(0, 0) + A(1, 1))});
+  const double N = out.normal_force[0] + out.normal_force[1];
+  out.omega_dot = inverse_inertia(top, f_hat, out.point[0].r.cross(out.force[0]) + out.point[1].r.cross(out.force[1])) +
+                  N * Ii_tau - free.Ii_G;
+}
+
+}  // namespace
+
+namespace {
+
+// Both contacts slipping, the Simulator's two-contact mode: F_k = N_k d_k, d_k = n - (F_t per N |v_t|)_k v_tk, and
+// N_k N c_k the couples per newton at contact k (rolling resistance, the patch's drilling). The two normal rows give
+// A N = (n . b_1, n . b_2), A_kj = n . (K_kj d_j - r_k x I^-1 c_j): a 2x2 solve. A Hertz patch depends on N_k: a
+// first pass as point contacts gives the N_k that size the patches of the second (as the tip sphere's two passes).
+void both_slipping(const Model& model, const std::array<ContactShape, 2>& shapes, const FreeMotion& free,
+                   const Eigen::Vector3d& tau_r, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
+                   const Eigen::Vector3d& w, TwoShapeMotion& out) {
+  const Top& top = model.top;
+  const FiniteContact& fc = model.finite_contact;
+  const bool patch = fc.has_patch();
+  std::array<Eigen::Vector3d, 2> t_hat, d, Ii_rxd;
+  std::array<double, 2> speed_sum{}, rhs{}, force_per_speed{}, drilling{};
+  for (int k = 0; k < 2; ++k) {
+    ShapeMotion one;
+    speed_sum[k] = slip_and_friction(model, v_cm, w, out.point[k], one, t_hat[k]);
+    out.v_t[k] = one.v_t;
+    out.slip[k] = one.slip;
+    rhs[k] = response_bias(free, out.point[k], w).z();
+  }
+  const Eigen::Vector3d Ii_n = inverse_inertia(top, f_hat, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
+  Eigen::Matrix2d A;
+  for (int pass = fc.hertz ? 0 : 1; pass < 2; ++pass) {
+    for (int k = 0; k < 2; ++k) {
+      if (patch) {
+        out.patch_radius[k] = !fc.hertz ? fc.patch_radius
+                              : pass == 0 ? 0.0
+                                          : shape_patch_radius(fc, shapes[k], out.normal_force[k]);
+        const PatchLaw law = patch_law(model, drilling_lever(fc.pressure, out.patch_radius[k]), out.v_t[k].norm(),
+                                       w.z(), speed_sum[k]);
+        out.mu[k] = law.mu;
+        out.slip[k] = law.slip;
+        force_per_speed[k] = law.force_per_speed;
+        drilling[k] = law.drilling;
+        d[k] = Eigen::Vector3d::UnitZ() - law.force_per_speed * out.v_t[k];
+      } else {
+        out.mu[k] = friction_coefficient(model.friction, out.slip[k]);
+        d[k] = Eigen::Vector3d::UnitZ() - out.mu[k] * t_hat[k];
+      }
+      Ii_rxd[k] = inverse_inertia(top, f_hat, out.point[k].r.cross(d[k])) + Ii_tau + drilling[k] * Ii_n;
+    }
+    for (int k = 0; k < 2; ++k)
+      for (int j = 0; j < 2; ++j) A(k, j) = d[j].z() / top.mass - out.point[k].r.cross(Ii_rxd[j]).z();
+    const double det = A.determinant(), scale = A(0, 0) * A(1, 1) + std::abs(A(0, 1) * A(1, 0));
+    // Past the Painleve boundary N is meaningless; keep it finite so the fault can be located.
+    const double safe = std::abs(det) > 1e-12 * scale ? det : std::copysign(1e-12 * scale + 1e-300, det);
+    out.normal_force[0] = (A(1, 1) * rhs[0] - A(0, 1) * rhs[1]) / safe;
+    out.normal_force[1] = (A(0, 0) * rhs[1] - A(1, 0) * rhs[0]) / safe;
+  }
+  out.painleve = top.mass * std::min({A(0, 0), A(1, 1), A.determinant() / (A(0, 0) + A(1, 1))});
+  out.omega_dot = -free.Ii_G;
+  for (int k = 0; k < 2; ++k) {
+    const double N = out.normal_force[k];
+    out.force[k] = N * d[k];
+    out.drilling_torque[k] = N * drilling[k];
+    out.omega_dot += N * Ii_rxd[k];
+    out.dissipation += patch ? N * force_per_speed[k] * out.v_t[k].squaredNorm() - out.drilling_torque[k] * w.z()
+                             : -out.force[k].dot(out.v_t[k]);  // mu N t_hat . v_t
+  }
+}
+
+}  // namespace
+
+TwoShapeMotion two_shape_motion(const Model& model, const std::array<ContactShape, 2>& shapes,
+                                const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm,
+                                const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
+  const Top& top = model.top;
+  const std::array<ShapePoint, 2> p{shape_point(shapes[0], f_hat, w), shape_point(shapes[1], f_hat, w)};
+  const FreeMotion free = free_motion(model, v_cm, f_hat, w);
+  // Rolling resistance (section 12) at each contact: N_j tau_r moves every contact k by -r_k x I^-1 tau_r per newton.
+  const double delta = model.finite_contact.rolling_resistance;
+  const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
+  TwoShapeMotion out;
+  out.point = p;
+  if (modes[0] == ContactMode::slipping && modes[1] == ContactMode::slipping) {
+    both_slipping(model, shapes, free, tau_r, v_cm, f_hat, w, out);
+  } else {
+    if (model.finite_contact.has_patch())
+      throw std::invalid_argument("two_shape_motion: a patch at two contacts is modelled with both slipping only");
+    stuck_pair(model, free, tau_r, modes, v_cm, f_hat, w, out);
+  }
   const double N = out.normal_force[0] + out.normal_force[1];
   out.a_cm = free.g + (out.force[0] + out.force[1]) / top.mass;
-  out.omega_dot = inverse_inertia(top, f_hat, p[0].r.cross(out.force[0]) + p[1].r.cross(out.force[1])) + N * Ii_tau -
-                  free.Ii_G;
   out.dissipation += free.air_power - N * tau_r.dot(w);
-  out.point = p;
   return out;
 }
 
@@ -355,8 +479,9 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
   if (mode != ContactMode::flight && two_touching(model.shapes)) [[unlikely]] {
     const TwoShapeMotion m = touching_pair_motion(model, y);
     if (record) {  // the margins read the contact nearer to lifting off (lift = its N)
-      record->force = m.force[m.normal_force[1] < m.normal_force[0] ? 1 : 0];
-      record->drilling_torque = 0.0;
+      const int nearer = m.normal_force[1] < m.normal_force[0] ? 1 : 0;
+      record->force = m.force[nearer];
+      record->drilling_torque = m.drilling_torque[nearer];
       record->painleve = m.painleve;
     }
     write_derivative(model, mode, y, b, {m.a_cm, m.omega_dot, m.dissipation}, m.point[0], dydt);
@@ -365,7 +490,7 @@ void shape_derivative(const Model& model, ContactMode mode, const StateVector& y
   const ShapeMotion m = shape_motion(model, touching_shape(model), mode, b.v_cm, b.f_hat, b.w);
   if (record) {
     record->force = m.force;
-    record->drilling_torque = 0.0;
+    record->drilling_torque = m.drilling_torque;
     record->painleve = m.painleve;
   }
   write_derivative(model, mode, y, b, {m.a_cm, m.omega_dot, m.dissipation}, m.point, dydt);

@@ -8,6 +8,8 @@
 #include "test_util.hpp"
 #include "top_sim/contact_shapes.hpp"
 #include "top_sim/dynamics.hpp"
+#include "top_sim/friction.hpp"
+#include "top_sim/scene.hpp"
 #include "top_sim/shape_motion.hpp"
 
 namespace {
@@ -143,6 +145,63 @@ TEST(ShapeMotion, TipSphereAgreesWithTheRightHandSide) {
       EXPECT_NEAR(m.painleve, expected.margins.painleve, 1e-12 * std::abs(expected.margins.painleve));
     }
   }
+}
+
+// On a patch (physics.md section 12) the tip sphere's slipping motion is still the one dynamics.cpp integrates: the
+// coupled sliding and drilling law, the Hertz radius from N (two passes), air and rolling resistance; each law and
+// pressure, at a state where drilling and sliding are both large (a omega_n / |v_t| ~ 0.5).
+TEST(ShapeMotion, TipSphereOnAPatchAgreesWithTheRightHandSide) {
+  for (const char* contact : {"{patch_radius: hertz, rolling_resistance: 1e-5}",
+                              "{patch_radius: hertz, drilling_law: elliptic}",
+                              "{patch_radius: 2.0e-4, patch_pressure: uniform, rolling_resistance: 1e-5}"}) {
+    const top_sim::Scene scene = top_sim_test::scene_from(
+        std::string("top: aluminium\nplane: {inclination: 0.1}\nfriction: pmma\ncontact: ") + contact +
+        "\nair: {spin_drag: 1.0e-7, drag: 1.0e-3}\ninitial: {start: tilted, tilt: 0.1, spin: 150.0}\n");
+    const top_sim::Model& model = scene.model;
+    top_sim::StateVector y{};
+    const Vector3d f_hat = tilted_axis(0.3, 0.4);
+    top_sim::set_figure_axis(y, f_hat);
+    top_sim::set_angular_velocity(y, 150.0 * f_hat + Vector3d(2.0, -1.0, 0.5));
+    top_sim::set_velocity(y, Eigen::Vector2d(0.03, -0.01));
+    const Vector3d w = top_sim::angular_velocity(y);
+    const Vector3d v_cm = top_sim::velocity3(y) + model.top.com_offset * w.cross(f_hat);
+    top_sim::Dynamics expected;
+    top_sim::evaluate_dynamics(model, ContactMode::slipping, y, expected);
+    const top_sim::ShapeMotion m =
+        top_sim::shape_motion(model, top_sim::tip_sphere(model.top), ContactMode::slipping, v_cm, f_hat, w);
+    ASSERT_GT(std::abs(expected.drilling_torque), 1e-3 * expected.normal_force * expected.patch_radius) << contact;
+    EXPECT_LT((m.force - expected.contact_force).norm(), 1e-12 * expected.contact_force.norm()) << contact;
+    EXPECT_LT((m.a_cm - expected.a_cm).norm(), 1e-12 * (expected.a_cm.norm() + 9.81)) << contact;
+    EXPECT_LT((m.omega_dot - expected.omega_dot).norm(), 1e-12 * expected.omega_dot.norm()) << contact;
+    EXPECT_NEAR(m.normal_force, expected.normal_force, 1e-12 * expected.normal_force) << contact;
+    EXPECT_NEAR(m.mu, expected.mu, 1e-12) << contact;
+    EXPECT_NEAR(m.slip, expected.contact.slip, 1e-13) << contact;
+    EXPECT_NEAR(m.patch_radius, expected.patch_radius, 1e-12 * expected.patch_radius) << contact;
+    EXPECT_NEAR(m.drilling_torque, expected.drilling_torque, 1e-12 * std::abs(expected.drilling_torque)) << contact;
+    EXPECT_NEAR(m.dissipation, expected.dissipation, 1e-12 * std::abs(expected.dissipation)) << contact;
+    EXPECT_NEAR(m.painleve, expected.margins.painleve, 1e-12 * std::abs(expected.margins.painleve)) << contact;
+  }
+}
+
+// physics.md section 12's closed form on a body of shapes: top_life's upright top pivoting in place on its tip's
+// Hertz patch loses spin at (mu(s) m g Rbar + k omega) / I_f, s = Rbar omega / (Rbar omega + v_eps) (pure pivoting),
+// Rbar = 3 pi a / 16, a = (3 m g R / (4 E*))^(1/3).
+TEST(ShapeMotion, UprightTopOnItsHertzPatchSpinsDownAtTheClosedFormRate) {
+  const top_sim::Scene scene = top_sim::load_scene(top_sim_test::scene_path("top_life"));
+  const top_sim::Model& model = scene.model;
+  const double omega = 100.0, mg = model.top.mass * 9.81, I_f = model.top.inertia_axial;
+  const top_sim::ShapeMotion m = top_sim::shape_motion(model, model.shapes.shape[0], ContactMode::slipping,
+                                                       Vector3d::Zero(), Vector3d::UnitZ(), omega * Vector3d::UnitZ());
+  const double a = std::cbrt(3.0 * mg * 1.5e-3 / (4.0 * model.finite_contact.effective_modulus));
+  const double lever = 3.0 * M_PI / 16.0 * a;
+  const double mu = top_sim::friction_coefficient(model.friction, lever * omega / (lever * omega + model.regularization_speed));
+  EXPECT_NEAR(m.normal_force, mg, 1e-12 * mg);
+  EXPECT_NEAR(m.patch_radius, a, 1e-12 * a);
+  EXPECT_NEAR(m.drilling_torque, -mu * mg * lever, 1e-9 * mu * mg * lever);
+  const double rate = -(mu * mg * lever + model.air.spin_drag * omega) / I_f;
+  EXPECT_NEAR(m.omega_dot.z(), rate, 1e-9 * std::abs(rate));
+  EXPECT_LT(m.omega_dot.head<2>().norm(), 1e-12 * std::abs(rate));
+  EXPECT_NEAR(m.dissipation, -rate * I_f * omega, 1e-9 * std::abs(rate) * I_f * omega);
 }
 
 // A thin disc (mass 0.4 kg, radius a = 0.04 m: I_d = m a^2 / 4, I_f = m a^2 / 2) rolling on a level plane.
@@ -335,6 +394,45 @@ TEST(TwoShapeMotion, SlidingOnTipAndCrownKeepsTheBalanceAndBothGaps) {
   EXPECT_GT(mixed.dissipated, 1e-3);
   EXPECT_LT(mixed.max_balance, 1e-10);
   EXPECT_LT(mixed.max_gap, 1e-11);
+}
+
+// The fallen top turning about the vertical on tip and crown with a patch at each (physics.md sections 12-13): both
+// slip, each with its own coupled sliding and drilling law. A Hertz patch sizes the tip's from its N; the crown's
+// sharp edge has none. A given patch radius drills at both. E + W_diss holds, the gaps stay 0, N_k > 0, and the
+// patches take more than the point contacts do.
+TEST(TwoShapeMotion, SlidingOnTipAndCrownOnPatchesKeepsTheBalance) {
+  top_sim::Model model = aluminium_top(0.0);
+  model.friction.kind = top_sim::FrictionLawKind::paper;  // mu(0) = 0: a patch on shapes slips
+  const FallenTop top = fallen_top();
+  const double z_cm = -top_sim::shape_height(top.shapes[0], top.f_hat.z());
+  const Body start{Vector3d(0.0, 0.0, z_cm), Vector3d(0.15, 0.05, 0.0), top.f_hat, Vector3d(0.0, 0.0, 6.0)};
+  const TwoContactRun point = slide_on_two(model, top, {ContactMode::slipping, ContactMode::slipping}, start, 2000, 1e-5);
+  top_sim::Material aluminium{6.9e10, 0.33}, pmma{3.0e9, 0.37};
+  model.finite_contact.hertz = true;
+  model.finite_contact.effective_modulus = top_sim::effective_modulus(aluminium, pmma);
+  const top_sim::TwoShapeMotion m = top_sim::two_shape_motion(model, top.shapes, {ContactMode::slipping, ContactMode::slipping},
+                                                              start.v_cm, start.f_hat, start.w);
+  // Sized by the N of a first pass as point contacts (one fixed-point step, as the tip sphere's): within 1e-3.
+  EXPECT_NEAR(m.patch_radius[0], top_sim::hertz_patch_radius(model.finite_contact, 1.5e-3, m.normal_force[0]),
+              1e-3 * m.patch_radius[0]);
+  EXPECT_EQ(m.patch_radius[1], 0.0);  // the crown's edge
+  EXPECT_LT(m.drilling_torque[0] * start.w.z(), 0.0);
+  EXPECT_EQ(m.drilling_torque[1], 0.0);
+  const TwoContactRun hertz = slide_on_two(model, top, {ContactMode::slipping, ContactMode::slipping}, start, 2000, 1e-5);
+  model.finite_contact.hertz = false;
+  model.finite_contact.patch_radius = 5.0e-4;
+  const top_sim::TwoShapeMotion fixed = top_sim::two_shape_motion(
+      model, top.shapes, {ContactMode::slipping, ContactMode::slipping}, start.v_cm, start.f_hat, start.w);
+  EXPECT_LT(fixed.drilling_torque[0] * start.w.z(), 0.0);
+  EXPECT_LT(fixed.drilling_torque[1] * start.w.z(), 0.0);
+  const TwoContactRun given = slide_on_two(model, top, {ContactMode::slipping, ContactMode::slipping}, start, 2000, 1e-5);
+  for (const TwoContactRun& run : {hertz, given}) {
+    EXPECT_GT(run.min_normal, 0.0);
+    EXPECT_GT(run.dissipated, point.dissipated);
+    EXPECT_LT(run.max_balance, 1e-10);
+    EXPECT_LT(run.max_gap, 1e-11);
+  }
+  EXPECT_GT(given.dissipated, hertz.dissipated);  // 0.5 mm at both against ~0.1 mm at the tip alone
 }
 
 }  // namespace
