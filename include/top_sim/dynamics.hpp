@@ -52,6 +52,8 @@ StickForce stick_force(const Model& model, const StateVector& y);
 // How far a stuck contact is inside its stick set [N] (> 0: it holds): mu_s F_n - |F_t| for a point, the law's
 // limit surface on a patch (finite_contact.hpp).
 double stick_margin(const Model& model, const StickForce& stick);
+// The patch radius of the contact that may stick, at normal force N: the tip sphere's, or the touching shape's.
+double stick_patch_radius(const Model& model, double normal_force);
 
 // Jellett's quantity lambda = L . (f f_hat + R n) [kg m^3 / s]: conserved on a point contact without air; on a
 // finite contact d lambda / dt = (couple + air_torque) . (f f_hat + R n) (physics.md section 12).

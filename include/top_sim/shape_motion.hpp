@@ -97,8 +97,14 @@ ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector
 double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape);
 // Two shapes touching (two_touching): both slipping, at the touching shape (index 0) and the second (index 1).
 TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y);
-// Applies an impulse P at shape `shape`'s lowest point to u, the touching shape's gap rate and omega.
-void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y);
+// Applies an impulse P at shape `shape`'s lowest point (and a patch's torsional impulse Q about n) to u, the touching
+// shape's gap rate and omega.
+void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y,
+                         double torsion = 0.0);
+// Section 9's stick impulse on the touching shape's patch: stops v_t and the pivoting omega_n, n . v_c unchanged.
+void apply_shape_stick_impulse(const Model& model, StateVector& y);
+// The touching shape's patch radius at normal force N.
+double touching_patch_radius(const Model& model, double normal_force);
 // K_kj of two_shape_motion at the state y: d v_k per newton-second at shape j's lowest point.
 Eigen::Matrix3d shape_pair_response(const Model& model, const StateVector& y, std::size_t k, std::size_t j);
 // The material velocity v_cm + w x r_k at shape `shape`'s lowest point.

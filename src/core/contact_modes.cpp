@@ -51,7 +51,7 @@ bool rolling_consistent(const Eigen::Vector3d& F, double static_friction) {
 }
 
 void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVector& y, double torsion) {
-  if (has_shapes(model)) return apply_shape_impulse(model, model.shapes.touching, P, y);
+  if (has_shapes(model)) return apply_shape_impulse(model, model.shapes.touching, P, y, torsion);
   const detail::RigidBody b(model, y);
   // dv_cm = P / m, I' d omega = rho x P (+ the patch's torsional impulse about n); u = v_cm - omega x (f f_hat);
   // the rotor keeps its absolute spin (the bearing is viscous: no impulsive torque), so nu changes by
@@ -65,6 +65,7 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
 }
 
 void apply_stick_impulse(const Model& model, StateVector& y) {
+  if (model.finite_contact.has_patch() && has_shapes(model)) return apply_shape_stick_impulse(model, y);
   if (model.finite_contact.has_patch()) {
     // On a patch the stick also stops the pivoting: impulse P and torsional impulse Q with d v_t = -v_t and
     // d omega_n = -omega_n, through the 4x4 response of dynamics.cpp's stick force (without rolling resistance,
@@ -107,16 +108,15 @@ ClosingResult close_contact(const Model& model, StateVector& y) {
     const ContactResponse r = contact_response(model, y);
     double v_t = std::hypot(r.v_c.x(), r.v_c.y());
     bool holds;
-    if (has_shapes(model)) {
-      holds = rolling_consistent(shape_motion(model, ContactMode::rolling, y).force, mu_s);
-    } else if (point_contact(model)) {
-      holds = rolling_consistent(rolling_force(r), mu_s);
-    } else {  // physics.md section 12: the generalised slip must be small and the stick set must hold
-      const StickForce st = stick_force(model, y);
-      const FiniteContact& fc = model.finite_contact;
-      const double lever = drilling_lever(fc.pressure, patch_radius(fc, model.top.tip_radius, st.force.z()));
+    if (model.finite_contact.has_patch()) {  // physics.md section 12: the generalised slip must be small and the
+      const StickForce st = stick_force(model, y);  // stick set must hold
+      const double lever = drilling_lever(model.finite_contact.pressure, stick_patch_radius(model, st.force.z()));
       v_t = std::hypot(v_t, lever * y[idx::omega + 2]);
       holds = st.force.z() > 0.0 && stick_margin(model, st) >= 0.0;
+    } else if (has_shapes(model)) {
+      holds = rolling_consistent(shape_motion(model, ContactMode::rolling, y).force, mu_s);
+    } else {
+      holds = rolling_consistent(rolling_force(r), mu_s);
     }
     if (v_t <= model.contact.stick_speed && holds && stick_inside_cone(model, y)) {
       out.mode = ContactMode::rolling;

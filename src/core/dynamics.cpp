@@ -293,9 +293,15 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.psi_dot = dydt[idx::psi];
   const ContactForceRecord record{m.force, m.drilling_torque, m.painleve};
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
-  const Eigen::Vector3d F = shape_motion(model, ContactMode::rolling, y).force;  // with its rolling resistance
-  const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / (model.top.mass * model.plane.gravity);
-  out.margins.transfer = std::max(m.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
+  // A slipping shape that may stick: the stuck force at this state (its rolling resistance; on a patch, the
+  // generalised slip (v_t, Rbar omega_n) must be small and the stick set must hold, as the tip sphere's).
+  const StickForce st = stick_force(model, y);
+  const double mg = model.top.mass * model.plane.gravity;
+  const double lever = model.finite_contact.has_patch()
+                           ? drilling_lever(model.finite_contact.pressure, stick_patch_radius(model, st.force.z()))
+                           : 0.0;
+  const double w = std::hypot(m.v_t.norm(), lever * y[idx::omega + 2]);
+  out.margins.transfer = std::max(w / model.contact.stick_speed - 1.0, -stick_margin(model, st) / mg);
 }
 
 }  // namespace
@@ -334,7 +340,11 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
 }
 
 StickForce stick_force(const Model& model, const StateVector& y) {
-  if (point_contact(model) || has_shapes(model)) return {rolling_force(contact_response(model, y)), 0.0};
+  if (has_shapes(model)) {  // with its rolling resistance, and on a patch its drilling torque
+    const ShapeMotion m = shape_motion(model, ContactMode::rolling, y);
+    return {m.force, m.drilling_torque};
+  }
+  if (point_contact(model)) return {rolling_force(contact_response(model, y)), 0.0};
   detail::RigidBody b(model, y);
   Dynamics scratch;
   if (model.air.active()) add_air(model, b, scratch);
@@ -345,8 +355,13 @@ double stick_margin(const Model& model, const StickForce& st) {
   const double mu_s = static_friction(model), N = st.force.z(), Ft = std::hypot(st.force.x(), st.force.y());
   const FiniteContact& fc = model.finite_contact;
   if (!fc.has_patch()) return mu_s * N - Ft;
-  const double lever = drilling_lever(fc.pressure, patch_radius(fc, model.top.tip_radius, N));
+  const double lever = drilling_lever(fc.pressure, stick_patch_radius(model, N));
   return top_sim::stick_margin(fc.law, fc.pressure, Ft, st.drilling_torque, mu_s, N, lever);
+}
+
+double stick_patch_radius(const Model& model, double normal_force) {
+  return has_shapes(model) ? touching_patch_radius(model, normal_force)
+                           : patch_radius(model.finite_contact, model.top.tip_radius, normal_force);
 }
 
 double jellett(const Model& model, const StateVector& y) {

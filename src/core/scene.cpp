@@ -610,17 +610,6 @@ void check_simulated_shapes(const Model& model, const std::string& file) {
   if (refused)
     throw SceneError(file, refused, "not with top.shapes yet (a body of shapes runs the full model with the "
                                     "constrained normal force, a patch, air and rolling resistance)");
-  // Its patches slip (section 12's stuck patch, pivoting included, is the tip sphere's alone): a law that can stick
-  // is refused with a patch, not run without the patch's stick.
-  const double mu_s = static_friction(model);
-  if (model.finite_contact.has_patch() && mu_s > 0.0) {
-    const FiniteContact& fc = model.finite_contact;
-    throw SceneError(file, "contact.patch_radius",
-                     (fc.hertz ? std::string("hertz") : fmt(fc.patch_radius)) +
-                         " on top.shapes, whose patches slip only, with a friction that can stick: static friction " +
-                         fmt(mu_s) + " > 0 (friction.static or the law's mu(0)); allowed with a law of mu(0) = 0 "
-                         "(paper, linearized) or without a patch");
-  }
 }
 
 }  // namespace

@@ -107,6 +107,30 @@ void slipping_on_patch(const Model& model, const ContactShape& shape, const Eige
   out.dissipation = N * law.force_per_speed * out.v_t.squaredNorm() - out.drilling_torque * omega_n;
 }
 
+// One shape stuck on its patch (section 12's stuck patch, as dynamics.cpp's stick_force_finite at the shape's
+// lowest point): unknowns F and M_n, constraints d/dt v_c = 0 and d/dt omega_n = 0:
+// [K, -r x I^-1 n; n . I^-1 (r x .) (+ n . I^-1 tau_r in F_z's column), n . I^-1 n] (F, M_n) = (b, n . I^-1 G).
+void stuck_on_patch(const Model& model, const ContactShape& shape, const Eigen::Matrix3d& K, const Eigen::Vector3d& b,
+                    const Eigen::Vector3d& Ii_G, const Eigen::Vector3d& tau_r, const Eigen::Vector3d& f_hat,
+                    ShapeMotion& out) {
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = inverse_inertia(model.top, f_hat, n);
+  const Eigen::Vector3d& r = out.point.r;
+  Eigen::Matrix4d A;
+  A.topLeftCorner<3, 3>() = K;
+  A.topRightCorner<3, 1>() = -r.cross(Ii_n);
+  for (int j = 0; j < 3; ++j) A(3, j) = Ii_n.dot(r.cross(Eigen::Vector3d::Unit(j)));
+  A(3, 2) += n.dot(inverse_inertia(model.top, f_hat, tau_r));
+  A(3, 3) = n.dot(Ii_n);
+  Eigen::Vector4d rhs;
+  rhs << b, n.dot(Ii_G);
+  const Eigen::Vector4d x = A.partialPivLu().solve(rhs);
+  out.force = x.head<3>();
+  out.normal_force = out.force.z();
+  out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
+  out.drilling_torque = x[3];
+  out.patch_radius = shape_patch_radius(model.finite_contact, shape, out.normal_force);
+}
+
 }  // namespace
 
 double shape_patch_radius(const FiniteContact& contact, const ContactShape& shape, double normal_force) {
@@ -139,6 +163,8 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
     out.normal_force = b.z() / n_Kd;
     out.force = out.normal_force * d;
     out.dissipation = out.mu * out.normal_force * t_hat.dot(out.v_t);
+  } else if (mode == ContactMode::rolling && model.finite_contact.has_patch()) {
+    stuck_on_patch(model, shape, K, b, free.Ii_G, tau_r, f_hat, out);
   } else if (mode == ContactMode::rolling) {
     out.force = delta > 0.0 ? Eigen::Vector3d(K.partialPivLu().solve(b)) : Eigen::Vector3d(K.llt().solve(b));
     out.normal_force = out.force.z();
@@ -147,6 +173,8 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   out.a_cm = free.g + out.force / top.mass;
   const Eigen::Vector3d couple = out.normal_force * tau_r + Eigen::Vector3d(0.0, 0.0, out.drilling_torque);
   out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force) + couple) - free.Ii_G;
+  // A stuck patch does no work but on a residual pivoting (omega_n ~ 0); the slipping patch's is in out already.
+  if (mode == ContactMode::rolling) out.dissipation -= out.drilling_torque * w.z();
   out.dissipation += free.air_power - out.normal_force * tau_r.dot(w);
   return out;
 }
@@ -398,17 +426,38 @@ double free_shape_gap(const Model& model, const StateVector& y, std::size_t& sha
   return least;
 }
 
-void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y) {
+void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y,
+                         double torsion) {
   const BodyView b = body_view(model, y);
   const Eigen::Vector3d r = shape_point(model.shapes.shape[shape], b.f_hat, b.w).r;
   const Eigen::Vector3d r_touching = shape_point(touching_shape(model), b.f_hat, b.w).r;
-  // dv_cm = P / m, I d omega = r x P; u = v_cm - f omega x f_hat; gap_rate is the touching shape's n . v_k.
-  const Eigen::Vector3d d_omega = inverse_inertia(model.top, b.f_hat, r.cross(P));
+  // dv_cm = P / m, I d omega = r x P + Q n (a patch's torsional impulse); u = v_cm - f omega x f_hat; gap_rate is
+  // the touching shape's n . v_k.
+  const Eigen::Vector3d d_omega = inverse_inertia(model.top, b.f_hat, r.cross(P) + Eigen::Vector3d(0.0, 0.0, torsion));
   const Eigen::Vector3d d_u = P / model.top.mass - d_omega.cross(model.top.com_offset * b.f_hat);
   y[idx::u] += d_u.x();
   y[idx::u + 1] += d_u.y();
   y[idx::gap_rate] += (P / model.top.mass + d_omega.cross(r_touching)).z();
   for (int i = 0; i < 3; ++i) y[idx::omega + i] += d_omega[i];
+}
+
+void apply_shape_stick_impulse(const Model& model, StateVector& y) {
+  const BodyView b = body_view(model, y);
+  const Eigen::Vector3d r = shape_point(touching_shape(model), b.f_hat, b.w).r;
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = inverse_inertia(model.top, b.f_hat, n);
+  const Eigen::Vector3d c = -r.cross(Ii_n);
+  Eigen::Matrix4d A;
+  A.topLeftCorner<3, 3>() = cross_response(model.top, b.f_hat, r, r);
+  A.topRightCorner<3, 1>() = c;
+  A.bottomLeftCorner<1, 3>() = c.transpose();
+  A(3, 3) = n.dot(Ii_n);
+  const Eigen::Vector3d v_c = b.v_cm + b.w.cross(r);
+  const Eigen::Vector4d x = A.llt().solve(-Eigen::Vector4d(v_c.x(), v_c.y(), 0.0, b.w.z()));
+  apply_shape_impulse(model, model.shapes.touching, x.head<3>(), y, x[3]);
+}
+
+double touching_patch_radius(const Model& model, double normal_force) {
+  return shape_patch_radius(model.finite_contact, touching_shape(model), normal_force);
 }
 
 Eigen::Matrix3d shape_pair_response(const Model& model, const StateVector& y, std::size_t k, std::size_t j) {

@@ -180,6 +180,16 @@ TEST(ShapeMotion, TipSphereOnAPatchAgreesWithTheRightHandSide) {
     EXPECT_NEAR(m.drilling_torque, expected.drilling_torque, 1e-12 * std::abs(expected.drilling_torque)) << contact;
     EXPECT_NEAR(m.dissipation, expected.dissipation, 1e-12 * std::abs(expected.dissipation)) << contact;
     EXPECT_NEAR(m.painleve, expected.margins.painleve, 1e-12 * std::abs(expected.margins.painleve)) << contact;
+    // Stuck on the patch (pivoting too): F and M_n keep v_c and omega_n constant, as stick_force_finite's.
+    top_sim::Dynamics stuck;
+    top_sim::evaluate_dynamics(model, ContactMode::rolling, y, stuck);
+    const top_sim::ShapeMotion r =
+        top_sim::shape_motion(model, top_sim::tip_sphere(model.top), ContactMode::rolling, v_cm, f_hat, w);
+    ASSERT_GT(std::abs(stuck.drilling_torque), 0.0) << contact;
+    EXPECT_LT((r.force - stuck.contact_force).norm(), 1e-11 * stuck.contact_force.norm()) << contact;
+    EXPECT_LT((r.omega_dot - stuck.omega_dot).norm(), 1e-11 * stuck.omega_dot.norm()) << contact;
+    EXPECT_NEAR(r.drilling_torque, stuck.drilling_torque, 1e-11 * std::abs(stuck.drilling_torque)) << contact;
+    EXPECT_NEAR(r.dissipation, stuck.dissipation, 1e-11 * std::abs(stuck.dissipation) + 1e-15) << contact;
   }
 }
 

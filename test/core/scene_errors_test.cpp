@@ -351,13 +351,8 @@ TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   EXPECT_EQ(rim.model.top.tip_radius, 0.0);  // the state's reference point is the centre of mass
   EXPECT_EQ(rim.model.top.com_offset, 0.0);
   expect_error(disc + ", rotor: {inertia_axial: 1e-5}}\n", "top.rotor", "not with top.shapes yet", "full model");
-  // A patch on shapes slips: refused with a law that can stick (Coulomb's mu(0) > 0, or friction.static).
-  expect_error(disc + "}\nfriction: {law: coulomb, mu: 0.3}\ncontact: {patch_radius: 1e-4}\n", "contact.patch_radius",
-               "1e-04 on top.shapes", "static friction 0.3 > 0 (friction.static or the law's mu(0)); allowed with a law "
-               "of mu(0) = 0 (paper, linearized)");
-  expect_error(disc + "}\nfriction: {law: paper, mu_c: 0.25, s_c: 0.6, static: 0.2}\ncontact: {patch_radius: 1e-4}\n",
-               "contact.patch_radius", "1e-04 on top.shapes", "static friction 0.2 > 0");
-  EXPECT_TRUE(scene_from(disc + "}\ncontact: {patch_radius: 1e-4}\n").model.finite_contact.has_patch());
+  EXPECT_TRUE(scene_from(disc + "}\nfriction: {law: coulomb, mu: 0.3}\ncontact: {patch_radius: 1e-4}\n")
+                  .model.finite_contact.has_patch());  // a patch on shapes, also with a law that sticks
   expect_error(disc + "}\nplane: {inclination: 0}\ninitial: {tilt: 0}\n", "initial.tilt",
                "top.shapes[0], a rim, starts lying flat", "must be >= 1e-04");
   expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with top.shapes yet",
