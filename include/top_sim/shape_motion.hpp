@@ -95,6 +95,8 @@ ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector
 // The least gap of the shapes not in contact and which shape has it (kNoShape and kNone when every shape touches):
 // a second shape's touchdown while one touches.
 double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape);
+// The gap rate of that shape (0 when every shape touches): a second touchdown needs it closing.
+double free_shape_gap_rate(const Model& model, const StateVector& y);
 // Two shapes touching (two_touching): both slipping, at the touching shape (index 0) and the second (index 1).
 TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y);
 // Applies an impulse P at shape `shape`'s lowest point (and a patch's torsional impulse Q about n) to u, the touching

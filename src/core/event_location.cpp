@@ -170,8 +170,8 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
     }
   } else if (lift_armed_ && m.lift < 0.0) {
     return Event::lift_off;
-  } else if (touch_armed_ && m.touch <= 0.0) {
-    return Event::second_touchdown;
+  } else if (touch_armed_ && m.touch <= 0.0 && free_shape_gap_rate(model_, y) < 0.0) {
+    return Event::second_touchdown;  // a shape reaching the plane closes on it (as a flight's touchdown)
   }
   if (transfer_armed_ && m.transfer <= 0.0) return Event::transfer;
   if (m.tilt < 0.0) return Event::fallen;

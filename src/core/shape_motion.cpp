@@ -426,6 +426,12 @@ double free_shape_gap(const Model& model, const StateVector& y, std::size_t& sha
   return least;
 }
 
+double free_shape_gap_rate(const Model& model, const StateVector& y) {
+  std::size_t shape;
+  free_shape_gap(model, y, shape);
+  return shape == kNoShape ? 0.0 : shape_gap_rate(model, y, model.shapes.shape[shape]);
+}
+
 void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y,
                          double torsion) {
   const BodyView b = body_view(model, y);
