@@ -34,6 +34,7 @@ struct TopOutput {
   Trail trail;              // contact-point trail
   MarkerStream markers;     // what ~markers has sent of the top
   ros::Time last_tf_stamp;  // tf only when time moved (a repeated stamp is TF_REPEATED_DATA to listeners)
+  ros::Time latched_stamp;  // the stopped time whose frames are on /tf_static (StateOutput::latch_frames)
   Eigen::Vector3d grid_at = Eigen::Vector3d::Constant(std::numeric_limits<double>::quiet_NaN());  // as last sent
   ros::Time grid_stamp;
 };

@@ -63,6 +63,10 @@ MarkerStyle StateOutput::style(const NodeTop& top) const {
 // Marker namespaces carry the top's prefix, so rviz keeps one set per top ("" for the launch-time top).
 void StateOutput::close(NodeTop& top) {
   std::fill(named_.begin(), named_.end(), nullptr);  // a top spawned later may get the killed one's address
+  const Frames& f = top.frames();
+  for (const std::string* child : {&f.plane, &f.top, &f.contact, &f.grid})  // no stale latched frames of it
+    static_changed_ |= static_.erase(*child) > 0;
+  publish_static();
   visualization_msgs::MarkerArray gone;
   top.output.markers.remove_all(top.sim().snapshot(), top.sim().model().top, top.frames(), style(top), top.prefix(),
                                 stamp(top), gone);
@@ -88,6 +92,7 @@ void StateOutput::publish(TopSet& tops, double wall, bool paused, double request
   }
   for (const auto& [top, i] : own_in_array_) top->output.state.publish(all_.states[i]);
   add_follow_transform(tops);
+  publish_static();
   if (tf_used_ > 0) {
     tf_msg_.transforms.resize(tf_used_);
     tf_.publish(tf_msg_);
@@ -157,9 +162,11 @@ geometry_msgs::TransformStamped& StateOutput::next_transform() {
   return tf_msg_.transforms[tf_used_++];
 }
 
-// tf only when the top's time moved (a repeated stamp is dropped by listeners as TF_REPEATED_DATA).
+// tf only when the top's time moved (a repeated stamp is dropped by listeners as TF_REPEATED_DATA); a top whose
+// time stopped (its end, a pause) has its frames latched on /tf_static instead.
 void StateOutput::add_transforms(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp) {
-  if (!params_.publish_tf || !(stamp > top.output.last_tf_stamp)) return;
+  if (!params_.publish_tf) return;
+  if (!(stamp > top.output.last_tf_stamp)) return latch_frames(top, pose, stamp);
   const std::size_t i = tf_used_;  // two entries taken first: taking one may move the vector
   next_transform();
   next_transform();
@@ -169,6 +176,35 @@ void StateOutput::add_transforms(NodeTop& top, const top_sim::TopPose& pose, con
     add_grid_transform(top, pose, stamp);
   }
   top.output.last_tf_stamp = stamp;
+}
+
+// A listener started after a top's time stopped (rviz opened on an ended run) would never get its frames: /tf
+// carries them only while time moves. So a stopped top's frames (body, contact, grid) go to /tf_static once, 1 ns
+// after its last /tf stamp (a listener that has the last one takes them as new data, no TF_REPEATED_DATA); when its
+// time moves on, /tf updates them as before.
+void StateOutput::latch_frames(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp) {
+  if (top.output.latched_stamp == stamp) return;
+  top.output.latched_stamp = stamp;
+  const ros::Time later = stamp + ros::Duration(0, 1);
+  geometry_msgs::TransformStamped world_plane, plane_top, contact, grid;
+  to_transforms(pose, later, top.frames(), world_plane, plane_top);
+  to_contact_transform(pose, later, top.frames(), contact);
+  to_grid_transform(pose, top.output.markers.grid_pitch(), later, top.frames(), grid);
+  for (const geometry_msgs::TransformStamped* t : {&world_plane, &plane_top, &contact, &grid}) set_static(*t);
+}
+
+void StateOutput::set_static(const geometry_msgs::TransformStamped& t) {
+  static_[t.child_frame_id] = t;
+  static_changed_ = true;
+}
+
+void StateOutput::publish_static() {
+  if (!static_changed_) return;
+  static_changed_ = false;
+  tf2_msgs::TFMessage all;
+  all.transforms.reserve(static_.size());
+  for (const auto& [child, t] : static_) all.transforms.push_back(t);
+  tf_static_.publish(all);
 }
 
 // The grid frame moves in steps of the pitch: sent when it moved, else once a second (tf's lookups of the latest
@@ -222,14 +258,12 @@ void StateOutput::add_follow_transform(TopSet& tops) {
   last_follow_stamp_ = top.output.last_tf_stamp;
   if (top.frames().contact == follow_parent_) return;
   follow_parent_ = top.frames().contact;
-  tf2_msgs::TFMessage follow;
-  follow.transforms.resize(1);
-  geometry_msgs::TransformStamped& t = follow.transforms[0];
+  geometry_msgs::TransformStamped t;
   t.header.stamp = top.output.last_tf_stamp;
   t.header.frame_id = follow_parent_;
   t.child_frame_id = params_.follow_frame;
   t.transform.rotation.w = 1.0;
-  tf_static_.publish(follow);
+  set_static(t);
 }
 
 // /clock follows the launch-time top, which is never removed and whose time never goes back (reset included).

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -61,6 +62,9 @@ class StateOutput {
   top_sim::TopState& next_state(const NodeTop& top);
   geometry_msgs::TransformStamped& next_transform();
   void add_transforms(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp);
+  void latch_frames(NodeTop& top, const top_sim::TopPose& pose, const ros::Time& stamp);
+  void set_static(const geometry_msgs::TransformStamped& t);
+  void publish_static();
   void publish_clock(const NodeTop& launch_top);
   void on_follow(const std::string& name) { follow_request_ = name; }
   NodeTop& followed_top(TopSet& tops);
@@ -77,6 +81,10 @@ class StateOutput {
   ros::Publisher markers_, states_, clock_, tf_, tf_static_;
   ros::Subscriber follow_sub_;
   std::string follow_parent_;            // the contact frame the follow frame is attached to on /tf_static
+  // /tf_static's latched message holds every transform sent there (the follow frame, the frames of stopped tops):
+  // a later one replaces it for listeners that start late. By child frame; published when changed.
+  std::map<std::string, geometry_msgs::TransformStamped> static_;
+  bool static_changed_ = false;
   std::string follow_, follow_request_;  // the followed top's name ("" = launch-time top); a name asked on ~follow
   bool markers_watched_ = false;         // ~markers has subscribers this tick: contact frames are needed
   // ~markers' subscriptions so far (counted by its connect callback) and as last seen by a marker tick.

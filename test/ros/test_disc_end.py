@@ -1,13 +1,14 @@
 #!/usr/bin/env python3
 """A disc at its end: once the dropped disc lies flat its simulated time stops, and ~markers keeps coming: every
 marker tick (10 Hz) an array, within marker_refresh (1 s) the body drawn from its rim with the touching tyre, the
-label saying the end state, and no tip sphere or stem drawn."""
+label saying the end state, and no tip sphere or stem drawn; a tf listener started after the end gets its frames."""
 import threading
 import time
 import unittest
 
 import rospy
 import rostest
+import tf2_ros
 from top_sim.msg import TopState
 from visualization_msgs.msg import Marker, MarkerArray
 
@@ -42,6 +43,14 @@ class DiscEnd(unittest.TestCase):
         self.assertTrue(last['label'].text.split('\n')[0].endswith('end: lying_flat'), last['label'].text)
         for ns in ('tip', 'stem'):
             self.assertEqual(last[ns].action, Marker.DELETE, ns + ': not on a disc')
+        # A tf listener started after the end (rviz opened on an ended run) gets the disc's frames: /tf_static
+        # holds the frames of a top whose time stopped (before, it got none and rviz drew nothing).
+        late = tf2_ros.Buffer()
+        listener = tf2_ros.TransformListener(late)
+        for parent, child in (('world', 'top'), ('plane', 'contact'), ('plane', 'grid')):
+            self.assertTrue(late.can_transform(parent, child, rospy.Time(0), rospy.Duration(5.0)),
+                            'a late listener has no %s -> %s' % (parent, child))
+        del listener
 
 
 if __name__ == '__main__':
