@@ -30,6 +30,7 @@ struct ShapeSet {
   std::size_t touching = 0;  // the shape in contact (set by the Simulator at touchdown; unused in flight); the
                              // state's gap is its own
   std::size_t second = kNoShape;  // a second shape in contact at once (a top on tip and crown), else kNoShape
+  std::array<bool, 2> stuck{false, false};  // with a second: contact 0 (touching) and 1 (second) stuck, else slipping
   bool active = false;       // a rim or several shapes: not the tip sphere alone (set with the shapes, shapes_active)
 };
 

@@ -97,8 +97,17 @@ ShapeMotion shape_motion(const Model& model, ContactMode mode, const StateVector
 double free_shape_gap(const Model& model, const StateVector& y, std::size_t& shape);
 // The gap rate of that shape (0 when every shape touches): a second touchdown needs it closing.
 double free_shape_gap_rate(const Model& model, const StateVector& y);
-// Two shapes touching (two_touching): both slipping, at the touching shape (index 0) and the second (index 1).
+// Two shapes touching (two_touching), at the touching shape (index 0) and the second (index 1): each slipping or
+// stuck as model.shapes.stuck says, or as `modes` says.
 TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y);
+TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y, const std::array<ContactMode, 2>& modes);
+// Contact k's margin of the pair's stick or slip (section 9 at two contacts), in units of m g: stuck, its stick
+// set's margin (mu_s N_k - |F_tk|) / (m g), <= 0 where it slips; slipping, > 0 until its slip speed is below the
+// stick speed and the pair with k stuck holds k inside its cone. `m` is the pair's motion in its modes.
+double pair_contact_margin(const Model& model, const StateVector& y, const TwoShapeMotion& m, int k);
+// Section 9's stick impulse at contact k of the pair: v_k becomes 0, and the other contact keeps its normal velocity
+// 0 (and, stuck, its tangential velocity 0 too).
+void apply_pair_stick_impulse(const Model& model, StateVector& y, int k);
 // Applies an impulse P at shape `shape`'s lowest point (and a patch's torsional impulse Q about n) to u, the touching
 // shape's gap rate and omega.
 void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vector3d& P, StateVector& y,

@@ -444,8 +444,7 @@ void jacobian_difference_steps(const Model& model, ContactMode mode, const State
 namespace {
 
 // Two shapes touching: > 0 while the body moves or accelerates (the tilt slot's end state at_rest when < 0).
-double rest_margin(const Model& model, const StateVector& y) {
-  const TwoShapeMotion m = touching_pair_motion(model, y);
+double rest_margin(const Model& model, const StateVector& y, const TwoShapeMotion& m) {
   const double reach = shapes_reach(model.shapes);
   const double speed = std::max(shape_body_com_velocity(model, y).norm(), angular_velocity(y).norm() * reach);
   const double acceleration = std::max(m.a_cm.norm(), m.omega_dot.norm() * reach);
@@ -463,9 +462,12 @@ double rest_margin(const Model& model, const StateVector& y) {
   }
   std::size_t free_shape;
   mg.touch = free_shape_gap(model, y, free_shape);
-  if (two_touching(model.shapes)) {  // no stick at two contacts (both slip: physics.md 13.4); no flat end either
+  if (two_touching(model.shapes)) {  // no flat end; each contact's stick or slip (both slip on patches)
+    const TwoShapeMotion m = touching_pair_motion(model, y);
+    mg.tilt = rest_margin(model, y, m);
     mg.transfer = ModeMargins::kNone;
-    mg.tilt = rest_margin(model, y);
+    if (static_friction(model) > 0.0 && !model.finite_contact.has_patch())
+      mg.transfer = std::min(pair_contact_margin(model, y, m, 0), pair_contact_margin(model, y, m, 1));
     return;
   }
   if (model.shapes.shape[model.shapes.touching].kind == ShapeKind::rim) {

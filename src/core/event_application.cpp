@@ -44,6 +44,10 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
       return;
     case Event::transfer:
+      if (has_shapes(model_) && two_touching(model_.shapes)) {
+        if (!pair_transfer(y)) return;
+        break;
+      }
       if (mode_ == ContactMode::slipping) {
         const double e0 = mechanical_energy(model_, y);
         if (!stick_inside_cone(model_, y)) {  // slip on, the stick disarmed until its margin has been positive
@@ -123,6 +127,56 @@ void SimulatorImpl::second_touchdown(StateVector& y) {
   if (impact.both) settle_pair(y);
 }
 
+// One contact of two sticks or slips (section 9 at each): the contact whose margin crossed. A stick takes the pair's
+// stick impulse and holds only if the pair then holds that contact inside its cone (else it slips on, the stick
+// disarmed); the other contact may then hold too. The mode is rolling while both stick. False when nothing changed
+// (the stepper restarted).
+bool SimulatorImpl::pair_transfer(StateVector& y) {
+  const TwoShapeMotion m = touching_pair_motion(model_, y);
+  const int k = pair_contact_margin(model_, y, m, 0) <= pair_contact_margin(model_, y, m, 1) ? 0 : 1;
+  if (model_.shapes.stuck[k]) {
+    model_.shapes.stuck[k] = false;
+    switch_mode(pair_mode(), ModeSwitchKind::slip);
+    return true;
+  }
+  if (!stick_pair_contact(y, k)) {
+    restart(y_, t_, false);
+    transfer_armed_ = false;
+    return false;
+  }
+  stick_pair_contacts(y);
+  return true;
+}
+
+ContactMode SimulatorImpl::pair_mode() const {
+  return model_.shapes.stuck[0] && model_.shapes.stuck[1] ? ContactMode::rolling : ContactMode::slipping;
+}
+
+bool SimulatorImpl::stick_pair_contact(StateVector& y, int k) {
+  const double e0 = mechanical_energy(model_, y);
+  StateVector stuck = y;
+  apply_pair_stick_impulse(model_, stuck, k);
+  model_.shapes.stuck[k] = true;
+  if (!(pair_contact_margin(model_, stuck, touching_pair_motion(model_, stuck), k) > 0.0)) {
+    model_.shapes.stuck[k] = false;
+    return false;
+  }
+  y = stuck;
+  const double loss = e0 - mechanical_energy(model_, y);
+  y[idx::w_diss] += loss;
+  switch_mode(pair_mode(), ModeSwitchKind::stick, -loss);
+  return true;
+}
+
+// Section 9's closing rule at two contacts: each slipping contact whose margin is already down (slow enough, and held
+// inside its cone with it stuck) sticks now; its margin would never fire, having not been positive.
+void SimulatorImpl::stick_pair_contacts(StateVector& y) {
+  if (!(static_friction(model_) > 0.0) || model_.finite_contact.has_patch()) return;
+  for (int k = 0; k < 2; ++k)
+    if (!model_.shapes.stuck[k] && pair_contact_margin(model_, y, touching_pair_motion(model_, y), k) <= 0.0)
+      stick_pair_contact(y, k);
+}
+
 // Two shapes touching: the one whose normal force is the smaller lets go when it is negative; the other closes
 // (closing rule: it may stick, or fly when its own normal force is negative too). The state's gap becomes the
 // remaining shape's (its drift from 0, the constraint's integration error, is booked with the energy).
@@ -131,6 +185,7 @@ void SimulatorImpl::let_go_of_one(StateVector& y) {
   const double e0 = mechanical_energy(model_, y);
   if (m.normal_force[0] < m.normal_force[1]) retouch(model_, y, model_.shapes.second);
   model_.shapes.second = kNoShape;
+  model_.shapes.stuck = {false, false};
   const ClosingResult closed = close_contact(model_, y);
   const double change = mechanical_energy(model_, y) - e0;
   y[idx::w_diss] -= change;
@@ -138,10 +193,13 @@ void SimulatorImpl::let_go_of_one(StateVector& y) {
 }
 
 // After a second touchdown: a pair whose forces pull one shape onto the plane is no contact pair; that shape lets
-// go at once.
+// go at once; else its slow contacts may stick (stick_pair_contacts).
 void SimulatorImpl::settle_pair(StateVector& y) {
   const TwoShapeMotion m = touching_pair_motion(model_, y);
-  if (m.normal_force[0] < 0.0 || m.normal_force[1] < 0.0) let_go_of_one(y);
+  if (m.normal_force[0] < 0.0 || m.normal_force[1] < 0.0)
+    let_go_of_one(y);
+  else
+    stick_pair_contacts(y);
 }
 
 void SimulatorImpl::switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change) {

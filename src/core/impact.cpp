@@ -132,6 +132,7 @@ SecondTouchdown apply_second_touchdown(Model& model, StateVector& y, std::size_t
   y = shared;
   y[idx::gap_rate] = 0.0;  // k's normal velocity, 0 by the impulse (rounding aside)
   model.shapes.second = j;
+  model.shapes.stuck = {false, false};  // both slip after the shared sliding impulse
   out.both = true;
   return out;
 }

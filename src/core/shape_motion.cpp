@@ -198,7 +198,31 @@ void pair_response(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Ve
 
 namespace {
 
-// A pair with a stuck contact (no Simulator mode yet: physics.md 13.4): unknowns F_k of a stuck contact, N_k of a
+// Both contacts stuck: equal and opposite forces along the line between them move nothing, so the friction split is
+// open; the one that asks the least of the friction, min over lambda of max_k |F_tk| / N_k with F_t0 + lambda e and
+// F_t1 - lambda e (e the line's direction, in the plane), is taken (a convex function of lambda: ternary search).
+void balance_friction(TwoShapeMotion& out) {
+  if (!(out.normal_force[0] > 0.0 && out.normal_force[1] > 0.0)) return;
+  Eigen::Vector3d e = out.point[1].r - out.point[0].r;
+  e.z() = 0.0;
+  if (!(e.norm() > 0.0)) return;
+  e.normalize();
+  const auto demand = [&](double lambda) {
+    const Eigen::Vector3d f0 = out.force[0] + lambda * e, f1 = out.force[1] - lambda * e;
+    return std::max(std::hypot(f0.x(), f0.y()) / out.normal_force[0], std::hypot(f1.x(), f1.y()) / out.normal_force[1]);
+  };
+  const double bound = out.force[0].head<2>().norm() + out.force[1].head<2>().norm();
+  double lo = -bound, hi = bound;
+  for (int i = 0; i < 100 && hi - lo > 1e-14 * (bound + 1e-300); ++i) {
+    const double a = lo + (hi - lo) / 3.0, b = hi - (hi - lo) / 3.0;
+    if (demand(a) <= demand(b)) hi = b; else lo = a;
+  }
+  const double lambda = 0.5 * (lo + hi);
+  out.force[0] += lambda * e;
+  out.force[1] -= lambda * e;
+}
+
+// A pair with a stuck contact (section 9 at two contacts): unknowns F_k of a stuck contact, N_k of a
 // slipping one (F_k = N_k d_k); rows all of v_k' = 0 stuck, n . v_k' = 0 slipping. F = B z, rows C: (C K B) z = C b,
 // least-norm where both are stuck (the free rotation about the line between the contacts leaves one part open).
 void stuck_pair(const Model& model, const FreeMotion& free, const Eigen::Vector3d& tau_r,
@@ -238,6 +262,9 @@ void stuck_pair(const Model& model, const FreeMotion& free, const Eigen::Vector3
   for (int k = 0; k < 2; ++k) {
     out.force[k] = F.segment<3>(3 * k);
     out.normal_force[k] = out.force[k].z();
+  }
+  if (modes[0] == ContactMode::rolling && modes[1] == ContactMode::rolling) balance_friction(out);
+  for (int k = 0; k < 2; ++k) {
     if (modes[k] == ContactMode::slipping)
       out.dissipation -= out.force[k].dot(out.v_t[k]);  // mu N t_hat . v_t
     else if (out.normal_force[k] > 0.0)
@@ -522,10 +549,60 @@ void write_derivative(const Model& model, ContactMode mode, const StateVector& y
 }  // namespace
 
 TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y) {
+  const auto mode = [&](int k) { return model.shapes.stuck[k] ? ContactMode::rolling : ContactMode::slipping; };
+  return touching_pair_motion(model, y, {mode(0), mode(1)});
+}
+
+TwoShapeMotion touching_pair_motion(const Model& model, const StateVector& y, const std::array<ContactMode, 2>& modes) {
   const BodyView b = body_view(model, y);
   const ShapeSet& s = model.shapes;
-  return two_shape_motion(model, {s.shape[s.touching], s.shape[s.second]},
-                          {ContactMode::slipping, ContactMode::slipping}, b.v_cm, b.f_hat, b.w);
+  return two_shape_motion(model, {s.shape[s.touching], s.shape[s.second]}, modes, b.v_cm, b.f_hat, b.w);
+}
+
+double pair_contact_margin(const Model& model, const StateVector& y, const TwoShapeMotion& m, int k) {
+  const double mg = model.top.mass * model.plane.gravity, mu_s = static_friction(model);
+  const auto stick_set = [&](const TwoShapeMotion& pair) {
+    return (mu_s * pair.normal_force[k] - std::hypot(pair.force[k].x(), pair.force[k].y())) / mg;
+  };
+  if (model.shapes.stuck[k]) return stick_set(m);
+  std::array<ContactMode, 2> modes{model.shapes.stuck[0] ? ContactMode::rolling : ContactMode::slipping,
+                                   model.shapes.stuck[1] ? ContactMode::rolling : ContactMode::slipping};
+  modes[k] = ContactMode::rolling;
+  return std::max(m.v_t[k].norm() / model.contact.stick_speed - 1.0, -stick_set(touching_pair_motion(model, y, modes)));
+}
+
+void apply_pair_stick_impulse(const Model& model, StateVector& y, int k) {
+  const ShapeSet& s = model.shapes;
+  const std::array<std::size_t, 2> shape{s.touching, s.second};
+  const int j = 1 - k;
+  // Unknowns: P_k (3), and P_j (3) where j is stuck, else lambda_j along n; rows: v_k+ = 0, and v_j+ = 0 or
+  // n . v_j+ = 0. Columns of the pair's response K_ab (d v_a per newton-second at b).
+  const int nj = s.stuck[j] ? 3 : 1;
+  Eigen::Matrix<double, 6, 6> A = Eigen::Matrix<double, 6, 6>::Zero();
+  Eigen::Matrix<double, 6, 1> rhs = Eigen::Matrix<double, 6, 1>::Zero();
+  const Eigen::Vector3d v_k = shape_contact_velocity(model, y, shape[k]), v_j = shape_contact_velocity(model, y, shape[j]);
+  const Eigen::Matrix3d K_kk = shape_pair_response(model, y, shape[k], shape[k]);
+  const Eigen::Matrix3d K_kj = shape_pair_response(model, y, shape[k], shape[j]);
+  const Eigen::Matrix3d K_jk = shape_pair_response(model, y, shape[j], shape[k]);
+  const Eigen::Matrix3d K_jj = shape_pair_response(model, y, shape[j], shape[j]);
+  A.block<3, 3>(0, 0) = K_kk;
+  rhs.head<3>() = -v_k;
+  if (nj == 3) {
+    A.block<3, 3>(0, 3) = K_kj;
+    A.block<3, 3>(3, 0) = K_jk;
+    A.block<3, 3>(3, 3) = K_jj;
+    rhs.segment<3>(3) = -v_j;
+  } else {
+    A.block<3, 1>(0, 3) = K_kj.col(2);
+    A.block<1, 3>(3, 0) = K_jk.row(2);
+    A(3, 3) = K_jj(2, 2);
+    rhs(3) = -v_j.z();
+  }
+  const int n = 3 + nj;
+  // Both stuck: impulses along the line between the contacts move nothing; the least-norm pair is taken.
+  const Eigen::VectorXd x = A.topLeftCorner(n, n).completeOrthogonalDecomposition().solve(rhs.head(n));
+  apply_shape_impulse(model, shape[k], x.head<3>(), y);
+  apply_shape_impulse(model, shape[j], nj == 3 ? Eigen::Vector3d(x.segment<3>(3)) : Eigen::Vector3d(0.0, 0.0, x(3)), y);
 }
 
 void shape_derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,

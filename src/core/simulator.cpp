@@ -164,6 +164,8 @@ void SimulatorImpl::reset() {
   // A stick impulse here is part of the initial state; a Painleve state comes back as slipping, and restart()
   // reports it from the slipping margins.
   model_.shapes.touching = 0;  // the start places shapes[0] on the plane (scene.cpp)
+  model_.shapes.second = kNoShape;
+  model_.shapes.stuck = {false, false};
   mode_ = initial_mode(model_, y).mode;
   mode_since_ = t_;
   restart(y, t_, true);

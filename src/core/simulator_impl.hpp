@@ -211,6 +211,10 @@ class SimulatorImpl {
   void switch_mode(ContactMode mode, ModeSwitchKind kind, double energy_change = 0.0);
   void touchdown(StateVector& y);
   void second_touchdown(StateVector& y);
+  bool pair_transfer(StateVector& y);
+  ContactMode pair_mode() const;
+  bool stick_pair_contact(StateVector& y, int k);
+  void stick_pair_contacts(StateVector& y);
   void let_go_of_one(StateVector& y);
   void settle_pair(StateVector& y);
   void select_stepper();
