@@ -117,18 +117,31 @@ void rk4_step(const top_sim::Model& model, const ContactShape& shape, ContactMod
   y.f_hat.normalize();
 }
 
+// A nutating, sliding state of a top: tilted 0.3 rad, 150 rad/s about its figure axis and a transverse part, its
+// tip sliding at 3 cm/s.
+struct SlidingState {
+  top_sim::StateVector y{};
+  Vector3d f_hat, w, v_cm;
+};
+SlidingState sliding_state(const top_sim::Model& model) {
+  SlidingState st;
+  st.f_hat = tilted_axis(0.3, 0.4);
+  top_sim::set_figure_axis(st.y, st.f_hat);
+  top_sim::set_angular_velocity(st.y, 150.0 * st.f_hat + Vector3d(2.0, -1.0, 0.5));
+  top_sim::set_velocity(st.y, Eigen::Vector2d(0.03, -0.01));
+  st.w = top_sim::angular_velocity(st.y);
+  st.v_cm = top_sim::velocity3(st.y) + model.top.com_offset * st.w.cross(st.f_hat);
+  return st;
+}
+
 // The tip sphere's motion is the one dynamics.cpp integrates: same force, accelerations and slip at a nutating,
 // sliding state of the default top, slipping and rolling.
 TEST(ShapeMotion, TipSphereAgreesWithTheRightHandSide) {
   const top_sim::Scene scene = top_sim_test::scene_from(top_sim_test::standard_scene(0.1, 150.0));
   const top_sim::Model& model = scene.model;
-  top_sim::StateVector y{};
-  const Vector3d f_hat = tilted_axis(0.3, 0.4);
-  top_sim::set_figure_axis(y, f_hat);
-  top_sim::set_angular_velocity(y, 150.0 * f_hat + Vector3d(2.0, -1.0, 0.5));
-  top_sim::set_velocity(y, Eigen::Vector2d(0.03, -0.01));
-  const Vector3d w = top_sim::angular_velocity(y);
-  const Vector3d v_cm = top_sim::velocity3(y) + model.top.com_offset * w.cross(f_hat);
+  const SlidingState st = sliding_state(model);
+  const top_sim::StateVector& y = st.y;
+  const Vector3d &f_hat = st.f_hat, &w = st.w, &v_cm = st.v_cm;
   for (ContactMode mode : {ContactMode::slipping, ContactMode::rolling}) {
     top_sim::Dynamics expected;
     top_sim::evaluate_dynamics(model, mode, y, expected);
@@ -158,13 +171,9 @@ TEST(ShapeMotion, TipSphereOnAPatchAgreesWithTheRightHandSide) {
         std::string("top: aluminium\nplane: {inclination: 0.1}\nfriction: pmma\ncontact: ") + contact +
         "\nair: {spin_drag: 1.0e-7, drag: 1.0e-3}\ninitial: {start: tilted, tilt: 0.1, spin: 150.0}\n");
     const top_sim::Model& model = scene.model;
-    top_sim::StateVector y{};
-    const Vector3d f_hat = tilted_axis(0.3, 0.4);
-    top_sim::set_figure_axis(y, f_hat);
-    top_sim::set_angular_velocity(y, 150.0 * f_hat + Vector3d(2.0, -1.0, 0.5));
-    top_sim::set_velocity(y, Eigen::Vector2d(0.03, -0.01));
-    const Vector3d w = top_sim::angular_velocity(y);
-    const Vector3d v_cm = top_sim::velocity3(y) + model.top.com_offset * w.cross(f_hat);
+    const SlidingState st = sliding_state(model);
+    const top_sim::StateVector& y = st.y;
+    const Vector3d &f_hat = st.f_hat, &w = st.w, &v_cm = st.v_cm;
     top_sim::Dynamics expected;
     top_sim::evaluate_dynamics(model, ContactMode::slipping, y, expected);
     const top_sim::ShapeMotion m =
