@@ -154,4 +154,31 @@ TEST(ShapeSimulator, StuckPatchOnAShapeIsTheTipSpheresStick) {
   }
 }
 
+// The shipped Euler's disk to its finite-time end: as its angle falls the disc's stick-slip switches come ever
+// faster (the finite-time singularity, Omega ~ beta^-1/2), and the run ends lying flat, a named end state, not in a
+// loop of ever shorter steps nor with the clustering fault (more than 1000 switches each within 1 us): no two
+// switches closer than 1 us, fewer than 2000 in all, the balance held. Measured: 782 switches, 74 in its last
+// 0.1 s against 32 in a tenth of a second 1.5 s before, the closest 59 us apart; the end at 63.079 s.
+TEST(ShapeSimulator, EulerDiskEndsLyingFlatWithoutClustering) {
+  top_sim::Simulator sim(top_sim::load_scene(top_sim_test::scene_path("euler_disk")));
+  sim.advance_to(sim.scene().duration);
+  ASSERT_EQ(sim.fault(), top_sim::ContactFault::none) << sim.fault_message();
+  EXPECT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
+  EXPECT_GT(sim.time(), 55.0);
+  EXPECT_LT(sim.time(), 70.0);
+  const std::vector<top_sim::ModeSwitch> switches = sim.take_mode_switches();
+  ASSERT_GT(switches.size(), 100u);
+  EXPECT_LT(switches.size(), 2000u);
+  double closest = 1.0;
+  int last_tenth = 0, second_before = 0;
+  for (std::size_t k = 0; k < switches.size(); ++k) {
+    if (k > 0) closest = std::min(closest, switches[k].t - switches[k - 1].t);
+    if (switches[k].t > sim.time() - 0.1) ++last_tenth;
+    if (switches[k].t > sim.time() - 1.6 && switches[k].t <= sim.time() - 1.5) ++second_before;
+  }
+  EXPECT_GT(closest, 1e-6);              // s: no clustering
+  EXPECT_GT(last_tenth, 2 * second_before);  // ever faster towards the end (74 against 32 1.5 s before)
+  EXPECT_LT(sim.max_energy_residual(), 1e-5);
+}
+
 }  // namespace
