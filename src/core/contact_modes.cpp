@@ -4,6 +4,7 @@
 #include <Eigen/Cholesky>
 #include <cmath>
 
+#include "patch_law.hpp"
 #include "rigid_body.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/shape_motion.hpp"
@@ -71,14 +72,8 @@ void apply_stick_impulse(const Model& model, StateVector& y) {
     // d omega_n = -omega_n, through the 4x4 response of dynamics.cpp's stick force (without rolling resistance,
     // which has no impulse).
     const detail::RigidBody b(model, y);
-    const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = b.inverse_inertia(n), c = -b.rho.cross(Ii_n);
-    Eigen::Matrix4d A;
-    A.topLeftCorner<3, 3>() = b.response_matrix();
-    A.topRightCorner<3, 1>() = c;
-    A.bottomLeftCorner<1, 3>() = c.transpose();
-    A(3, 3) = n.dot(Ii_n);
-    const Eigen::Vector3d v_c = b.contact_velocity();
-    const Eigen::Vector4d x = A.llt().solve(-Eigen::Vector4d(v_c.x(), v_c.y(), 0.0, b.w.z()));
+    const Eigen::Vector4d x = stuck_patch_impulse(b.response_matrix(), b.rho, b.inverse_inertia(Eigen::Vector3d::UnitZ()),
+                                                  b.contact_velocity(), b.w.z());
     apply_contact_impulse(model, x.head<3>(), y, x[3]);
     return;
   }

@@ -127,9 +127,8 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Conta
   }
 }
 
-// The stick force on a finite contact. On a patch the unknowns are F and M_n, and the constraints d/dt v_c = 0
-// and d/dt omega_n = 0: [K, -rho x I'^-1 n; n . I'^-1 (rho x .), n . I'^-1 n] plus the rolling resistance's
-// F_z column. Without a patch M_n = 0 and omega_n is free.
+// The stick force on a finite contact: on a patch F and M_n (stuck_patch_force, patch_law.hpp); without one
+// M_n = 0 and omega_n is free.
 StickForce stick_force_finite(const Model& model, const detail::RigidBody& b) {
   const Eigen::Vector3d tau_r = rolling_resistance_per_newton(model, b);
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
@@ -140,16 +139,8 @@ StickForce stick_force_finite(const Model& model, const detail::RigidBody& b) {
     out.force = K.partialPivLu().solve(b.response_bias());
     return out;
   }
-  const Eigen::Vector3d Ii_n = b.inverse_inertia(n);
-  Eigen::Matrix4d A;
-  A.topLeftCorner<3, 3>() = K;
-  A.topRightCorner<3, 1>() = -b.rho.cross(Ii_n);
-  for (int j = 0; j < 3; ++j) A(3, j) = Ii_n.dot(b.rho.cross(Eigen::Vector3d::Unit(j)));
-  A(3, 2) += n.dot(b.inverse_inertia(tau_r));
-  A(3, 3) = n.dot(Ii_n);
-  Eigen::Vector4d rhs;
-  rhs << b.response_bias(), n.dot(b.Ii_G);
-  const Eigen::Vector4d x = A.partialPivLu().solve(rhs);
+  const Eigen::Vector4d x = stuck_patch_force(K, b.rho, b.inverse_inertia(n), n.dot(b.inverse_inertia(tau_r)),
+                                               b.response_bias(), n.dot(b.Ii_G));
   out.force = x.head<3>();
   out.drilling_torque = x[3];
   return out;
@@ -246,6 +237,18 @@ template <ContactModel kContact>
 
 namespace {
 
+// A slipping contact that may stick (section 9's stick function, in weights): > 0 until its slip is below the stick
+// speed and the stuck force at this state lies inside the stick set. On a patch the whole generalised slip
+// w = (v_t, Rbar omega_n) must be small (section 12). For the tip sphere and a touching shape alike.
+double stick_transfer_margin(const Model& model, const StateVector& y, const Eigen::Vector3d& v_t) {
+  const StickForce st = stick_force(model, y);
+  double w = v_t.norm();
+  if (model.finite_contact.has_patch())
+    w = std::hypot(w, drilling_lever(model.finite_contact.pressure, stick_patch_radius(model, st.force.z())) *
+                          y[idx::omega + 2]);
+  return std::max(w / model.contact.stick_speed - 1.0, -stick_margin(model, st) / (model.top.mass * model.plane.gravity));
+}
+
 // Two shapes touching: their summed force is the contact force, mu the ratio of its parts, v_t and the slip the
 // touching shape's (the second's are in touching_pair_motion).
 void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
@@ -293,15 +296,7 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.psi_dot = dydt[idx::psi];
   const ContactForceRecord record{m.force, m.drilling_torque, m.painleve};
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
-  // A slipping shape that may stick: the stuck force at this state (its rolling resistance; on a patch, the
-  // generalised slip (v_t, Rbar omega_n) must be small and the stick set must hold, as the tip sphere's).
-  const StickForce st = stick_force(model, y);
-  const double mg = model.top.mass * model.plane.gravity;
-  const double lever = model.finite_contact.has_patch()
-                           ? drilling_lever(model.finite_contact.pressure, stick_patch_radius(model, st.force.z()))
-                           : 0.0;
-  const double w = std::hypot(m.v_t.norm(), lever * y[idx::omega + 2]);
-  out.margins.transfer = std::max(w / model.contact.stick_speed - 1.0, -stick_margin(model, st) / mg);
+  out.margins.transfer = stick_transfer_margin(model, y, m.v_t);
 }
 
 }  // namespace
@@ -323,20 +318,7 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
   record.force = out.contact_force;
   record.drilling_torque = out.drilling_torque;
   if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
-  // A slipping contact that may stick: the stick function needs the rolling force at this state.
-  const double mg = model.top.mass * model.plane.gravity;
-  if (point) {
-    const Eigen::Vector3d F = rolling_force(contact_response(model, y));
-    const double consistency = (std::hypot(F.x(), F.y()) - static_friction(model) * F.z()) / mg;
-    out.margins.transfer = std::max(out.contact.v_t.norm() / model.contact.stick_speed - 1.0, consistency);
-    return;
-  }
-  // On a patch the whole generalised slip w = (v_t, Rbar omega_n) must be small, and the stick set must hold.
-  const StickForce st = stick_force(model, y);
-  const double lever = drilling_lever(model.finite_contact.pressure, patch_radius(model.finite_contact,
-                                                                                   model.top.tip_radius, st.force.z()));
-  const double w = std::hypot(out.contact.v_t.norm(), lever * y[idx::omega + 2]);
-  out.margins.transfer = std::max(w / model.contact.stick_speed - 1.0, -stick_margin(model, st) / mg);
+  out.margins.transfer = stick_transfer_margin(model, y, out.contact.v_t);
 }
 
 StickForce stick_force(const Model& model, const StateVector& y) {

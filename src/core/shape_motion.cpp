@@ -107,23 +107,13 @@ void slipping_on_patch(const Model& model, const ContactShape& shape, const Eige
   out.dissipation = N * law.force_per_speed * out.v_t.squaredNorm() - out.drilling_torque * omega_n;
 }
 
-// One shape stuck on its patch (section 12's stuck patch, as dynamics.cpp's stick_force_finite at the shape's
-// lowest point): unknowns F and M_n, constraints d/dt v_c = 0 and d/dt omega_n = 0:
-// [K, -r x I^-1 n; n . I^-1 (r x .) (+ n . I^-1 tau_r in F_z's column), n . I^-1 n] (F, M_n) = (b, n . I^-1 G).
+// One shape stuck on its patch (section 12's stuck patch at the shape's lowest point, stuck_patch_force).
 void stuck_on_patch(const Model& model, const ContactShape& shape, const Eigen::Matrix3d& K, const Eigen::Vector3d& b,
                     const Eigen::Vector3d& Ii_G, const Eigen::Vector3d& tau_r, const Eigen::Vector3d& f_hat,
                     ShapeMotion& out) {
-  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = inverse_inertia(model.top, f_hat, n);
-  const Eigen::Vector3d& r = out.point.r;
-  Eigen::Matrix4d A;
-  A.topLeftCorner<3, 3>() = K;
-  A.topRightCorner<3, 1>() = -r.cross(Ii_n);
-  for (int j = 0; j < 3; ++j) A(3, j) = Ii_n.dot(r.cross(Eigen::Vector3d::Unit(j)));
-  A(3, 2) += n.dot(inverse_inertia(model.top, f_hat, tau_r));
-  A(3, 3) = n.dot(Ii_n);
-  Eigen::Vector4d rhs;
-  rhs << b, n.dot(Ii_G);
-  const Eigen::Vector4d x = A.partialPivLu().solve(rhs);
+  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
+  const Eigen::Vector4d x = stuck_patch_force(K, out.point.r, inverse_inertia(model.top, f_hat, n),
+                                              n.dot(inverse_inertia(model.top, f_hat, tau_r)), b, n.dot(Ii_G));
   out.force = x.head<3>();
   out.normal_force = out.force.z();
   out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
@@ -477,15 +467,9 @@ void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vec
 void apply_shape_stick_impulse(const Model& model, StateVector& y) {
   const BodyView b = body_view(model, y);
   const Eigen::Vector3d r = shape_point(touching_shape(model), b.f_hat, b.w).r;
-  const Eigen::Vector3d n = Eigen::Vector3d::UnitZ(), Ii_n = inverse_inertia(model.top, b.f_hat, n);
-  const Eigen::Vector3d c = -r.cross(Ii_n);
-  Eigen::Matrix4d A;
-  A.topLeftCorner<3, 3>() = cross_response(model.top, b.f_hat, r, r);
-  A.topRightCorner<3, 1>() = c;
-  A.bottomLeftCorner<1, 3>() = c.transpose();
-  A(3, 3) = n.dot(Ii_n);
-  const Eigen::Vector3d v_c = b.v_cm + b.w.cross(r);
-  const Eigen::Vector4d x = A.llt().solve(-Eigen::Vector4d(v_c.x(), v_c.y(), 0.0, b.w.z()));
+  const Eigen::Vector4d x = stuck_patch_impulse(cross_response(model.top, b.f_hat, r, r), r,
+                                                inverse_inertia(model.top, b.f_hat, Eigen::Vector3d::UnitZ()),
+                                                b.v_cm + b.w.cross(r), b.w.z());
   apply_shape_impulse(model, model.shapes.touching, x.head<3>(), y, x[3]);
 }
 
