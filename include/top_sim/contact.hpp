@@ -45,14 +45,16 @@ inline ContactKinematics contact_kinematics(const Model& model, const Eigen::Vec
   return k;
 }
 
-// Faults stop the top (physics.md sections 4 and 9); lift-off is not a fault but a switch to flight.
-enum class ContactFault { none, painleve, fallen, numerical };
+// Faults stop the top where the model cannot go on (physics.md sections 4, 8 and 9); lift-off is not a fault but a
+// switch to flight, and a body that falls has reached an end (EndState::fallen), not a fault.
+enum class ContactFault { none, painleve, numerical };
 
 const char* to_string(ContactFault fault);
 
-// Ends of a run that are no fault (physics.md section 13): the run stops there and says so.
-enum class EndState { none, lying_flat, at_rest };
-constexpr int kEndStateCount = 3;  // adapters read a recorded name back over these codes
+// Ends of a run that are no fault (physics.md sections 8 and 13): the run stops there and says so. `fallen`: the
+// figure axis passed max_tilt with no shape to catch the body.
+enum class EndState { none, lying_flat, at_rest, fallen };
+constexpr int kEndStateCount = 4;  // adapters read a recorded name back over these codes
 
 const char* to_string(EndState state);
 std::string describe(EndState state, double margin, double t);

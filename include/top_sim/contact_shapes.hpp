@@ -7,6 +7,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
+#include <string>
 
 
 namespace top_sim {
@@ -14,11 +16,17 @@ namespace top_sim {
 enum class ShapeKind : unsigned char { sphere, rim };
 const char* to_string(ShapeKind kind);
 
+// A shape's name as the labels say it ("rolling on tip and crown"): a plain identifier, kept in place so that a
+// ShapeSet stays a value without allocation.
+constexpr std::size_t kShapeNameSize = 16;  // with the terminating 0
+using ShapeName = std::array<char, kShapeNameSize>;
+
 // A sphere (centre r_cm + offset f_hat) or a rim (a circle of that radius, centred there, normal to f_hat).
 struct ContactShape {
   ShapeKind kind = ShapeKind::sphere;
   double offset = 0.0;  // d [m]
   double radius = 0.0;  // r of a sphere, rho of a rim [m]
+  ShapeName name{};     // empty: unnamed (labels say "shape i")
 };
 
 // The body's shapes, at most kMaxShapes (a fixed array: no allocation of its own).
@@ -35,6 +43,23 @@ struct ShapeSet {
 };
 
 inline bool two_touching(const ShapeSet& shapes) { return shapes.second != kNoShape; }
+
+// Shape i's name, or "shape i" when it has none.
+inline std::string shape_name(const ShapeSet& shapes, std::size_t i) {
+  const char* name = shapes.shape[i].name.data();
+  return name[0] != '\0' ? std::string(name) : "shape " + std::to_string(i);
+}
+
+// The names of the shapes whose bits are set in `touching`, joined for a label: "tip", "tip and crown".
+inline std::string touching_names(const ShapeSet& shapes, std::uint32_t touching) {
+  std::string out;
+  for (std::size_t i = 0; i < shapes.count; ++i) {
+    if ((touching & (1u << i)) == 0) continue;
+    touching &= ~(1u << i);
+    out += (out.empty() ? "" : (touching == 0 ? " and " : ", ")) + shape_name(shapes, i);
+  }
+  return out;
+}
 
 // Whether `shapes` is more than the tip sphere alone; a ShapeSet built by hand sets `active` with it.
 inline bool shapes_active(const ShapeSet& shapes) {

@@ -36,8 +36,19 @@ struct ScriptedEvent {
   Command command;
 };
 
+// How a viewer shows the scene's story (scene key `view`); the node and rviz follow it unless the launch overrides.
+// 0 and `unset` leave the viewer's own default.
+enum class ViewCamera { unset, low, top, follow };
+const char* to_string(ViewCamera camera);
+struct ViewHint {
+  ViewCamera camera = ViewCamera::unset;  // low: from the side, near the plane; top: from above; follow: the top's frame
+  double distance = 0.0;                  // the camera's distance from its focus [m]
+  double real_time_factor = 0.0;          // simulated seconds per wall second in the node
+};
+
 struct Scene {
   std::string source = "<scene>";  // file name, for messages
+  ViewHint view;
   Model model;
   InitialConditions initial;
   IntegratorSettings integrator;

@@ -79,8 +79,10 @@ Eigen::Vector3d shape_body_com(const Model& model, const StateVector& y);
 Eigen::Vector3d shape_body_com_velocity(const Model& model, const StateVector& y);
 // Makes `shape` the touching one: the state's gap and gap_rate become its own (the body does not move).
 void retouch(Model& model, StateVector& y, std::size_t shape);
-// The end state the tilt slot's margin stands for in contact: at_rest on two shapes, else lying_flat (a rim).
-inline EndState shape_end_state(const Model& model) {
+// The end state the tilt slot's margin stands for in contact: at_rest on two shapes, lying_flat on a rim, and
+// fallen for a body on its tip sphere alone (its axis passed max_tilt with no shape to catch it).
+inline EndState tilt_end_state(const Model& model) {
+  if (!has_shapes(model)) return EndState::fallen;
   return two_touching(model.shapes) ? EndState::at_rest : EndState::lying_flat;
 }
 // Snapshot::touching: bit i set while shape i of top.shapes touches (a body without shapes: its tip sphere, bit 0);

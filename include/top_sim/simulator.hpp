@@ -63,11 +63,12 @@ class Simulator {
   TopPose pose() const;
   const StepperStats& stats() const;
   ContactFault fault() const;
-  // A named end that stopped the run without a fault (physics.md section 13); fault_message() says it.
+  // A named end that stopped the run without a fault (physics.md sections 8 and 13); end_message() says it.
   EndState end_state() const;
   // A fault or an end state stopped the run: time() stays there.
   bool stopped() const;
-  const std::string& fault_message() const;
+  const std::string& fault_message() const;  // empty unless fault() is set
+  const std::string& end_message() const;    // empty unless end_state() is set
   // The analytic sleeping state for the current alpha and shell spin (solved on the first read, then cached).
   const StationaryState& stationary() const;
   double max_energy_residual() const;

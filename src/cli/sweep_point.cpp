@@ -153,6 +153,11 @@ void relax(Simulator& sim, const SweepSettings& settings, const RunBudget& budge
       res.note = r.final.fault_message;
       return;
     }
+    if (r.final.end_state != EndState::none) {  // the top fell: an end of its story, named as the outcome
+      res.outcome = to_string(r.final.end_state);
+      res.note = r.final.end_message;
+      return;
+    }
     if (res.regime == Regime::sliding) {
       if (sliding_since < 0.0) sliding_since = t_start;
       if (sim.time() - sliding_since >= settings.slide_duration - 1e-9) {

@@ -59,7 +59,7 @@ struct SweepResult {
   std::optional<double> phi_star;  // analytic phi* (signed by the spin), when a stationary state exists
   std::optional<double> phi;       // measured direction of travel at the end of the run
   std::optional<double> tan_half;  // measured tan(phi/2), mirrored for negative spin (comparable to s*)
-  std::string outcome;             // sleeping | sliding | unconverged | contact_fault
+  std::string outcome;             // sleeping | sliding | unconverged | contact_fault | an end state (fallen)
   Regime regime = Regime::nutating;
   double sim_seconds = 0.0;
   double cpu_seconds = 0.0;

@@ -56,8 +56,10 @@ Outcome run_scene(const Scene& scene, double T, bool timed = true) {
     ++reps;
     if (reps > 1) continue;
     const Snapshot s = sim.snapshot();
-    o.ok = sim.fault() == ContactFault::none;
-    o.fault = o.ok ? "" : to_string(sim.fault());
+    o.ok = !sim.stopped();  // a fault or an end (a fall) has no drift to measure
+    o.fault = sim.fault() != ContactFault::none ? to_string(sim.fault())
+              : sim.end_state() != EndState::none ? to_string(sim.end_state())
+                                                  : "";
     o.t_end = sim.time();
     o.p = position(sim.state());
     const Eigen::Vector2d d = o.p - mark;

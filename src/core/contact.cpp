@@ -12,7 +12,6 @@ const char* to_string(ContactFault fault) {
   switch (fault) {
     case ContactFault::none: return "none";
     case ContactFault::painleve: return "painleve";
-    case ContactFault::fallen: return "fallen";
     case ContactFault::numerical: return "numerical";
   }
   return "?";
@@ -26,10 +25,6 @@ std::string describe(ContactFault fault, double value, double t) {
     case ContactFault::painleve:
       os << "Painleve: the rigid contact has no unique normal force (m n.K d = " << value
          << " <= 0); reduce the friction";
-      break;
-    case ContactFault::fallen:
-      os << "fallen: the figure axis is tilted beyond max_tilt from the plane normal (n . f_hat - cos(max_tilt) = "
-         << value << "); the body would touch the plane";
       break;
     case ContactFault::numerical:
       os << "numerical failure: the integrator produced a non-finite state or could not find a step; "
@@ -47,6 +42,7 @@ const char* to_string(EndState state) {
   switch (state) {
     case EndState::lying_flat: return "lying_flat";
     case EndState::at_rest: return "at_rest";
+    case EndState::fallen: return "fallen";
     case EndState::none: break;
   }
   return "none";
@@ -61,6 +57,9 @@ std::string describe(EndState state, double margin, double t) {
   else if (state == EndState::at_rest)
     os << "end state at_rest: the body rests on two shapes (its speeds and accelerations are below the rest "
           "thresholds, margin " << format_number(margin) << ")";
+  else if (state == EndState::fallen)
+    os << "end state fallen: the figure axis passed max_tilt from the plane normal with no shape to catch the body "
+          "(n . f_hat - cos(max_tilt) = " << format_number(margin) << ")";
   else
     os << "no end state";
   return os.str();

@@ -36,12 +36,8 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
     case Event::painleve:
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
-    case Event::fallen:
-      if (has_shapes(model_)) {  // a rim lying flat, a body at rest on two shapes (shape_margins, dynamics.cpp)
-        end(shape_end_state(model_), m.tilt);
-        return;
-      }
-      fail(ContactFault::fallen, describe(ContactFault::fallen, m.tilt, t_));
+    case Event::end:  // a rim lying flat, a body at rest on two shapes, a top fallen past max_tilt
+      end(tilt_end_state(model_), m.tilt);
       return;
     case Event::transfer:
       if (has_shapes(model_) && two_touching(model_.shapes)) {
@@ -123,7 +119,8 @@ void SimulatorImpl::second_touchdown(StateVector& y) {
   else if (!impact.both) next = close_contact(model_, y).mode;
   const double loss = e0 - mechanical_energy(model_, y);
   y[idx::w_diss] += loss;
-  switch_mode(next, ModeSwitchKind::touchdown, -loss);
+  // A shape's impact that throws the body off the plane is, for the body in contact, a lift-off.
+  switch_mode(next, next == ContactMode::flight ? ModeSwitchKind::lift_off : ModeSwitchKind::touchdown, -loss);
   if (impact.both) settle_pair(y);
 }
 

@@ -174,7 +174,7 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
     return Event::second_touchdown;  // a shape reaching the plane closes on it (as a flight's touchdown)
   }
   if (transfer_armed_ && m.transfer <= 0.0) return Event::transfer;
-  if (m.tilt < 0.0) return Event::fallen;
+  if (m.tilt < 0.0) return Event::end;
   return Event::none;
 }
 

@@ -3,6 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
+
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
@@ -17,11 +20,27 @@ const char* to_string(Regime r) {
     case Regime::inverting: return "inverting";
     case Regime::inverted: return "inverted";
     case Regime::tumbling: return "tumbling";
+    case Regime::rolling: return "rolling";
+    case Regime::on_crown: return "on_crown";
+    case Regime::on_stem: return "on_stem";
+    case Regime::at_rest: return "at_rest";
+    case Regime::lying_flat: return "lying_flat";
+    case Regime::fallen: return "fallen";
   }
   return "?";
 }
 
-RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
+Regime end_regime(EndState state) {
+  switch (state) {
+    case EndState::at_rest: return Regime::at_rest;
+    case EndState::lying_flat: return Regime::lying_flat;
+    case EndState::fallen: return Regime::fallen;
+    case EndState::none: break;
+  }
+  return Regime::nutating;
+}
+
+RegimeIndicators regime_indicators(const Model& model, ContactMode mode, const StateVector& y, const Dynamics& dyn,
                                    const StationaryState& st) {
   RegimeIndicators ind;
   const Top& top = model.top;
@@ -62,6 +81,12 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   ind.tippe = top.com_offset < 0.0;
   ind.tilt = std::acos(std::max(-1.0, std::min(1.0, f_hat.z())));
   ind.slip = dyn.contact.slip;
+  ind.shape_body = has_shapes(model);
+  if (ind.shape_body) {
+    ind.touching = touching_shapes(model, mode);
+    for (std::size_t k = 0; k < model.shapes.count; ++k)
+      if (model.shapes.shape[k].kind == ShapeKind::rim) ind.touching_rims |= ind.touching & (1u << k);
+  }
   return ind;
 }
 
@@ -76,10 +101,21 @@ Regime tippe_regime(const RegimeIndicators& ind, Regime previous) {
   return ind.slip < k * kTippeGlidingSlip ? Regime::tumbling : Regime::inverting;
 }
 
+// What a body of shapes touches with, when that decides the word (none: on its first sphere, or in flight, where the
+// tip sphere's words apply).
+std::optional<Regime> shape_regime(const RegimeIndicators& ind) {
+  if (!ind.shape_body || ind.touching == 0) return std::nullopt;
+  if ((ind.touching & (ind.touching - 1)) != 0) return Regime::rolling;  // two shapes: it rolls on them as a cone
+  if (ind.touching_rims != 0) return ind.touching == 1u ? Regime::rolling : Regime::on_crown;  // a disc on its edge
+  if (ind.touching != 1u) return Regime::on_stem;
+  return std::nullopt;
+}
+
 }  // namespace
 
 Regime classify(const RegimeThresholds& th, const RegimeIndicators& ind, bool fault, Regime previous) {
   if (fault) return Regime::contact_fault;
+  if (const std::optional<Regime> touching = shape_regime(ind)) return *touching;
   if (ind.tippe) return tippe_regime(ind, previous);
   // A sliding top keeps a steady omega-f_hat offset from the friction torque: sliding outranks nutation.
   if (ind.runaway) return Regime::sliding;

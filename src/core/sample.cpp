@@ -17,11 +17,12 @@ namespace {
 
 // A regime point's analysis from the dynamics and the energy evaluated already; a sample adds the stationary state
 // at its spin.
-SampleAnalysis analysis_of(const Model& model, const StateVector& y, const Dynamics& dynamics, double energy,
-                           const StationaryState& model_stationary) {
+SampleAnalysis analysis_of(const Model& model, ContactMode mode, const StateVector& y, const Dynamics& dynamics,
+                           double energy, const StationaryState& model_stationary) {
   SampleAnalysis a;
   a.dynamics = dynamics;
-  if (model.kind != ModelKind::adiabatic) a.indicators = regime_indicators(model, y, a.dynamics, model_stationary);
+  if (model.kind != ModelKind::adiabatic)
+    a.indicators = regime_indicators(model, mode, y, a.dynamics, model_stationary);
   a.energy = energy;
   return a;
 }
@@ -32,7 +33,7 @@ SampleAnalysis regime_point_analysis(const Model& model, ContactMode mode, const
                                      const StationaryState& model_stationary) {
   Dynamics dynamics;
   evaluate_dynamics(model, mode, y, dynamics);
-  return analysis_of(model, y, dynamics, mechanical_energy(model, y), model_stationary);
+  return analysis_of(model, mode, y, dynamics, mechanical_energy(model, y), model_stationary);
 }
 
 
@@ -57,8 +58,8 @@ const SampleAnalysis& SimulatorImpl::sample() const {
     // The tick's end was just scanned, with a full evaluation: its dynamics and energy serve (the same bits).
     const bool scanned = scan_end_.valid && sample_.staged && scan_end_.t == t_ &&
                          std::memcmp(scan_end_.y.data(), y_.data(), sizeof(StateVector)) == 0;
-    sample_.analysis = scanned ? analyse_sample(model_, y_, stationary_geometry_, sample_.analysis.dynamics,
-                                                scan_end_.energy)
+    sample_.analysis = scanned ? analyse_sample(model_, mode_, y_, stationary_geometry_,
+                                                sample_.analysis.dynamics, scan_end_.energy)
                                : analyse_sample(model_, mode_, y_, stationary_geometry_);
     sample_.staged = false;
     sample_.regime = classify(model_.regime, sample_.analysis.indicators, false, cadence_regime_);
@@ -70,7 +71,9 @@ const SampleAnalysis& SimulatorImpl::sample() const {
 
 Snapshot SimulatorImpl::snapshot() const {
   const SampleAnalysis& a = sample();
-  const Regime regime = fault_ != ContactFault::none ? Regime::contact_fault : sample_.regime;
+  const Regime regime = fault_ != ContactFault::none        ? Regime::contact_fault
+                        : end_state_ != EndState::none ? end_regime(end_state_)
+                                                       : sample_.regime;
   Snapshot s = make_snapshot(model_, y_, t_, balance_, a, regime, mode_);
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
@@ -78,7 +81,7 @@ Snapshot SimulatorImpl::snapshot() const {
   }
   if (end_state_ != EndState::none) {
     s.end_state = end_state_;
-    s.end_message = fault_message_;
+    s.end_message = end_message_;
   }
   return s;
 }
@@ -87,13 +90,13 @@ SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateV
                               const StationaryGeometry& geometry) {
   Dynamics dynamics;  // the reduced model's snapshot reads the sleeping state, never the dynamics (make_snapshot)
   if (model.kind == ModelKind::full) evaluate_dynamics(model, mode, y, dynamics);
-  return analyse_sample(model, y, geometry, dynamics, mechanical_energy(model, y));
+  return analyse_sample(model, mode, y, geometry, dynamics, mechanical_energy(model, y));
 }
 
-SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const StationaryGeometry& geometry,
-                              const Dynamics& dynamics, double energy) {
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
+                              const StationaryGeometry& geometry, const Dynamics& dynamics, double energy) {
   count(work_counters().sample_analyses);
-  SampleAnalysis a = analysis_of(model, y, dynamics, energy, geometry.state);
+  SampleAnalysis a = analysis_of(model, mode, y, dynamics, energy, geometry.state);
   a.stationary = stationary_state(model, geometry, shell_spin(y));  // and the sleeping state at this spin
   return a;
 }
@@ -168,10 +171,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.phi_star = s.has_stationary_state ? stationary.phi : 0.0;
   s.indicators = analysis.indicators;
   s.fault = ContactFault::none;
-  if (model.kind == ModelKind::full) {
-    if (dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
-    else if (dyn.margins.tilt < 0.0 && !has_shapes(model)) s.fault = ContactFault::fallen;  // a rim: lying flat
-  }
+  if (model.kind == ModelKind::full && dyn.margins.painleve <= 0.0) s.fault = ContactFault::painleve;
   s.regime = regime;
   s.energy = analysis.energy;
   s.dissipated_work = y[idx::w_diss];

@@ -23,8 +23,8 @@ struct SampleAnalysis {
 SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
                               const StationaryGeometry& geometry);
 // The same, from y's dynamics (evaluate_dynamics in `mode`) and energy evaluated already.
-SampleAnalysis analyse_sample(const Model& model, const StateVector& y, const StationaryGeometry& geometry,
-                              const Dynamics& dynamics, double energy);
+SampleAnalysis analyse_sample(const Model& model, ContactMode mode, const StateVector& y,
+                              const StationaryGeometry& geometry, const Dynamics& dynamics, double energy);
 // What a regime point needs of a state: the dynamics, the indicators and the energy, with no stationary solve
 // (the indicators read only the model's answer, exists and slip_unstable, which no spin changes).
 SampleAnalysis regime_point_analysis(const Model& model, ContactMode mode, const StateVector& y,

@@ -4,6 +4,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cfloat>
 #include <cmath>
 #include <filesystem>
@@ -203,7 +204,23 @@ Material read_material(Section& s) {
   return m;
 }
 
-// One item of top.shapes: {sphere: {offset, radius}} or {rim: {offset, radius}}.
+// A shape's name: a plain identifier (letters, digits, '_', not starting with a digit) of at most 15 characters.
+ShapeName read_shape_name(const YAML::Node& n, const std::string& file, const std::string& key) {
+  const std::string v = n.IsScalar() ? n.Scalar() : "";
+  const bool plain = !v.empty() && v.size() < kShapeNameSize && !std::isdigit(static_cast<unsigned char>(v[0])) &&
+                     std::all_of(v.begin(), v.end(), [](char c) {
+                       return std::isalnum(static_cast<unsigned char>(c)) || c == '_';
+                     });
+  if (!plain)
+    throw SceneError(file, key, (n.IsScalar() ? "'" + v + "'" : show(n)) + " is not a plain identifier; must be 1 to " +
+                                    std::to_string(kShapeNameSize - 1) +
+                                    " letters, digits or '_', not starting with a digit (e.g. crown)");
+  ShapeName name{};
+  std::copy(v.begin(), v.end(), name.begin());
+  return name;
+}
+
+// One item of top.shapes: {sphere: {offset, radius, name}} or {rim: {offset, radius, name}}.
 ContactShape read_shape(const YAML::Node& item, const std::string& file, const std::string& key) {
   if (!item.IsMap() || item.size() != 1)
     throw SceneError(file, key, show(item) + " must be a mapping of one key, sphere or rim");
@@ -218,6 +235,7 @@ ContactShape read_shape(const YAML::Node& item, const std::string& file, const s
   shape.offset = s.number("offset", 0.0, finite, "a finite number [m] (the centre's distance from the centre of mass "
                                                  "along the figure axis)");
   shape.radius = s.number("radius", 0.0, positive, "> 0 [m]");
+  if (s.has("name")) shape.name = read_shape_name(s.raw("name"), file, join(s.path(), "name"));
   s.finish();
   return shape;
 }
@@ -365,6 +383,19 @@ void read_contact(Section& root, const std::string& file, Model& model) {
 }
 
 // air.* (physics.md section 12); a finite contact or air needs the full model (the reduced one has no drilling).
+ViewHint read_view(Section& root, const std::string& file) {
+  Section v(root.raw("view"), file, "view");
+  ViewHint view;
+  const std::string camera = v.word("camera", "unset", {"low", "top", "follow"});
+  view.camera = camera == "low" ? ViewCamera::low : camera == "top" ? ViewCamera::top
+              : camera == "follow" ? ViewCamera::follow : ViewCamera::unset;
+  view.distance = v.number("distance", 0.0, [](double d) { return d > 0.0 && d <= 100.0; }, "in (0, 100] [m]");
+  view.real_time_factor = v.number("real_time_factor", 0.0, [](double f) { return f > 0.0 && f <= 1000.0; },
+                                   "in (0, 1000] (simulated seconds per wall second)");
+  v.finish();
+  return view;
+}
+
 void read_air(Section& root, const std::string& file, Model& model) {
   Section a(root.raw("air"), file, "air");
   model.air.spin_drag = a.number("spin_drag", 0.0, non_negative, ">= 0 [N m s]");
@@ -652,6 +683,7 @@ Scene parse_scene(const YAML::Node& root, const std::string& source, const std::
   read_initial(s, file, scene.model, scene.initial);
   scene.integrator = read_integrator(s, file);
   scene.duration = s.number("duration", scene.duration, positive, "> 0 [s]");
+  scene.view = read_view(s, file);
 
   scene.events = read_events(s, file, scene.model);
   s.finish();
@@ -711,6 +743,16 @@ StateVector initial_state(const Scene& scene) {
   y[idx::gap] = ic.gap;
   y[idx::gap_rate] = ic.gap_rate;
   return y;
+}
+
+const char* to_string(ViewCamera camera) {
+  switch (camera) {
+    case ViewCamera::low: return "low";
+    case ViewCamera::top: return "top";
+    case ViewCamera::follow: return "follow";
+    case ViewCamera::unset: break;
+  }
+  return "unset";
 }
 
 }  // namespace top_sim

@@ -154,6 +154,7 @@ void SimulatorImpl::reset() {
   fault_ = ContactFault::none;
   end_state_ = EndState::none;
   fault_message_.clear();
+  end_message_.clear();
   max_energy_residual_seen_ = 0.0;
   mode_seconds_.fill(0.0);
   switches_.clear();
@@ -212,10 +213,8 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
   } else if (model_.kind == ModelKind::full) {
     if (last_margins_.painleve <= 0.0)
       fail(ContactFault::painleve, describe(ContactFault::painleve, last_margins_.painleve, t_));
-    else if (last_margins_.tilt < 0.0 && has_shapes(model_))
-      end(shape_end_state(model_), last_margins_.tilt);
     else if (last_margins_.tilt < 0.0)
-      fail(ContactFault::fallen, describe(ContactFault::fallen, last_margins_.tilt, t_));
+      end(tilt_end_state(model_), last_margins_.tilt);
   }
 }
 
@@ -238,7 +237,7 @@ void SimulatorImpl::fail(ContactFault fault, const std::string& message) {
 void SimulatorImpl::end(EndState state, double margin) {
   if (stopped()) return;
   end_state_ = state;
-  fault_message_ = describe(state, margin, t_);
+  end_message_ = describe(state, margin, t_);
 }
 
 // The user's surface: each call is the stage's.
@@ -265,6 +264,7 @@ ContactFault Simulator::fault() const { return impl_->fault_; }
 EndState Simulator::end_state() const { return impl_->end_state_; }
 bool Simulator::stopped() const { return impl_->stopped(); }
 const std::string& Simulator::fault_message() const { return impl_->fault_message_; }
+const std::string& Simulator::end_message() const { return impl_->end_message_; }
 const StationaryState& Simulator::stationary() const { return impl_->sample().stationary; }
 double Simulator::max_energy_residual() const { return impl_->max_energy_residual_seen_; }
 ContactMode Simulator::contact_mode() const { return impl_->mode_; }

@@ -35,7 +35,7 @@
 namespace top_sim {
 
 // What one sample of the dense output shows; when several show at once, the first in this order is handled.
-enum class Event { none, painleve, lift_off, touchdown, second_touchdown, transfer, fallen };
+enum class Event { none, painleve, lift_off, touchdown, second_touchdown, transfer, end };  // end: the tilt slot's end state
 
 // The first instant in a step at which an event fires, as event_location.cpp found it: what fired, on which of
 // the body's contact shapes (one today, the tip sphere: index 0), and the margins of the sample that showed it.
@@ -110,6 +110,7 @@ class SimulatorImpl {
 
   // ---- The rest, grouped by the stage that fills it.
   std::string fault_message_;
+  std::string end_message_;
   // Solved at reset and commands (no spin): the regime clock reads its existence and unstable root, a sample adds
   // omega* and u* at its spin.
   StationaryGeometry stationary_geometry_;
@@ -184,7 +185,7 @@ class SimulatorImpl {
   void commit(const StateVector& y, double t);
   void restart(const StateVector& y, double t, bool rebase_energy);
   void fail(ContactFault fault, const std::string& message);
-  void end(EndState state, double margin);  // stops the run at a named end state (message in fault_message_)
+  void end(EndState state, double margin);  // stops the run at a named end state (message in end_message_)
   bool stopped() const { return fault_ != ContactFault::none || end_state_ != EndState::none; }
   void stop_at_step_start(const std::string& detail);
   enum class Reach { stop, fault, out_of_budget };

@@ -25,6 +25,12 @@ static_assert(top_state_t::UPRIGHT == top_sim::code(top_sim::Regime::upright), "
 static_assert(top_state_t::INVERTING == top_sim::code(top_sim::Regime::inverting), "top_state_t regime code");
 static_assert(top_state_t::INVERTED == top_sim::code(top_sim::Regime::inverted), "top_state_t regime code");
 static_assert(top_state_t::TUMBLING == top_sim::code(top_sim::Regime::tumbling), "top_state_t regime code");
+static_assert(top_state_t::ROLLING_ON_SHAPES == top_sim::code(top_sim::Regime::rolling), "top_state_t regime code");
+static_assert(top_state_t::ON_CROWN == top_sim::code(top_sim::Regime::on_crown), "top_state_t regime code");
+static_assert(top_state_t::ON_STEM == top_sim::code(top_sim::Regime::on_stem), "top_state_t regime code");
+static_assert(top_state_t::AT_REST == top_sim::code(top_sim::Regime::at_rest), "top_state_t regime code");
+static_assert(top_state_t::LYING_FLAT == top_sim::code(top_sim::Regime::lying_flat), "top_state_t regime code");
+static_assert(top_state_t::FALLEN == top_sim::code(top_sim::Regime::fallen), "top_state_t regime code");
 static_assert(top_state_t::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "top_state_t mode code");
 static_assert(top_state_t::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "top_state_t mode code");
 static_assert(top_state_t::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "top_state_t mode code");

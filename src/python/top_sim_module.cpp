@@ -387,6 +387,7 @@ void bind_simulator(py::module_& m) {
       .def_property_readonly("fault", [](PySimulator& p) { return optional_fault(reader(&Simulator::fault)(p)); })
       .def_property_readonly("fault_message", reader(&Simulator::fault_message))
       .def_property_readonly("end_state", [](PySimulator& p) { return optional_end(reader(&Simulator::end_state)(p)); })
+      .def_property_readonly("end_message", reader(&Simulator::end_message))
       .def_property_readonly("mode_switch_count", reader(&Simulator::mode_switch_count))
       .def_property_readonly("mode_seconds", &mode_seconds)
       .def_property_readonly("stats", &stats)

@@ -51,6 +51,12 @@ static_assert(top_sim::TopState::UPRIGHT == top_sim::code(top_sim::Regime::uprig
 static_assert(top_sim::TopState::INVERTING == top_sim::code(top_sim::Regime::inverting), "TopState regime code");
 static_assert(top_sim::TopState::INVERTED == top_sim::code(top_sim::Regime::inverted), "TopState regime code");
 static_assert(top_sim::TopState::TUMBLING == top_sim::code(top_sim::Regime::tumbling), "TopState regime code");
+static_assert(top_sim::TopState::ROLLING_ON_SHAPES == top_sim::code(top_sim::Regime::rolling), "TopState regime code");
+static_assert(top_sim::TopState::ON_CROWN == top_sim::code(top_sim::Regime::on_crown), "TopState regime code");
+static_assert(top_sim::TopState::ON_STEM == top_sim::code(top_sim::Regime::on_stem), "TopState regime code");
+static_assert(top_sim::TopState::AT_REST == top_sim::code(top_sim::Regime::at_rest), "TopState regime code");
+static_assert(top_sim::TopState::LYING_FLAT == top_sim::code(top_sim::Regime::lying_flat), "TopState regime code");
+static_assert(top_sim::TopState::FALLEN == top_sim::code(top_sim::Regime::fallen), "TopState regime code");
 static_assert(top_sim::TopState::SLIPPING == top_sim::code(top_sim::ContactMode::slipping), "TopState mode code");
 static_assert(top_sim::TopState::ROLLING == top_sim::code(top_sim::ContactMode::rolling), "TopState mode code");
 static_assert(top_sim::TopState::FLIGHT == top_sim::code(top_sim::ContactMode::flight), "TopState mode code");

@@ -180,8 +180,9 @@ visualization_msgs::Marker spin_marker(const top_sim::Snapshot& s, const std::st
 
 // Velocity arrow and label in the contact frame (origin at the contact point, plane axes): they move with the
 // top at the tf rate and keep their direction on the plane. The label sits above the top and above the controls.
-void add_contact_markers(const top_sim::Snapshot& s, double body_top, const MarkerStyle& style, Rgb colour,
-                         const std::string& frame, const ros::Time& stamp, visualization_msgs::MarkerArray& out) {
+void add_contact_markers(const top_sim::Snapshot& s, double body_top, const top_sim::ShapeSet& shapes,
+                         const MarkerStyle& style, Rgb colour, const std::string& frame, const ros::Time& stamp,
+                         visualization_msgs::MarkerArray& out) {
   using visualization_msgs::Marker;
   Marker vel = marker(frame, stamp, "velocity", kVelocityMarker, Marker::ARROW, {0.1f, 0.8f, 0.2f});
   const double v = s.tip_velocity.norm();
@@ -192,7 +193,7 @@ void add_contact_markers(const top_sim::Snapshot& s, double body_top, const Mark
 
   Marker label = marker(frame, stamp, "label", kLabelMarker, Marker::TEXT_VIEW_FACING, readable(colour));
   const double above_top = (s.com - s.contact_point).z() + body_top + 0.02;
-  label.text = status_text(style.name, s, "\n");
+  label.text = status_text(style.name, s, "\n", &shapes);
   const double lines = 1.0 + static_cast<double>(std::count(label.text.begin(), label.text.end(), '\n'));
   // Centred text: half its height above the controls keeps its lowest line clear of them.
   label.pose.position.z = std::max(above_top, control_layout::kTop + (0.5 * lines + 0.5) * kLabelHeight);
@@ -247,6 +248,12 @@ Rgb body_colour(const top_sim::Snapshot& s, ColorBy by) {
     case Regime::inverting: return {0.95f, 0.45f, 0.6f};
     case Regime::inverted: return {0.45f, 0.35f, 0.95f};
     case Regime::tumbling: return {0.6f, 0.5f, 0.3f};
+    case Regime::rolling: return {0.25f, 0.75f, 0.75f};
+    case Regime::on_crown:
+    case Regime::on_stem: return {0.55f, 0.45f, 0.9f};
+    case Regime::at_rest:
+    case Regime::lying_flat:
+    case Regime::fallen: return {0.6f, 0.62f, 0.66f};  // the story has ended: grey, as a still object
     case Regime::nutating: break;
   }
   return {1.0f, 0.6f, 0.2f};
@@ -289,18 +296,34 @@ double grid_pitch_for(double speed, double base, double current) {
   return pitch;
 }
 
-std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break) {
+namespace {
+
+// The regime word, or with the body's shapes what it touches with: "rolling on tip and crown", "on stem".
+std::string regime_text(const top_sim::Snapshot& s, const top_sim::ShapeSet* shapes) {
+  using top_sim::Regime;
+  const bool named = shapes != nullptr && shapes->active && s.touching != 0;
+  if (named && s.regime == Regime::rolling) return "rolling on " + top_sim::touching_names(*shapes, s.touching);
+  if (named && (s.regime == Regime::on_crown || s.regime == Regime::on_stem))
+    return "on " + top_sim::touching_names(*shapes, s.touching);
+  return top_sim::to_string(s.regime);
+}
+
+}  // namespace
+
+std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break,
+                        const top_sim::ShapeSet* shapes) {
   std::string text = name.empty() ? "" : name + ": ";
   if (s.regime == top_sim::Regime::contact_fault) return text + "fault: " + s.fault_message;
   char numbers[64];
+  if (s.end_state != top_sim::EndState::none) {  // stopped there: its end and when, no motion that has stopped
+    std::snprintf(numbers, sizeof numbers, "end: %s at t = %.2f s", top_sim::to_string(s.end_state), s.t);
+    return text + numbers;
+  }
   if (s.has_stationary_state)
     std::snprintf(numbers, sizeof numbers, "phi %.3f / phi* %.3f", s.phi, s.phi_star);
   else
     std::snprintf(numbers, sizeof numbers, "phi %.3f", s.phi);
-  if (s.end_state != top_sim::EndState::none)  // the run has stopped there: the regime would read as still going on
-    text += std::string("end: ") + top_sim::to_string(s.end_state) + line_break;
-  else
-    text += top_sim::to_string(s.regime) + std::string(", ") + top_sim::to_string(s.contact_mode) + line_break;
+  text += regime_text(s, shapes) + ", " + top_sim::to_string(s.contact_mode) + line_break;
   return text + numbers + ", v " + speed_text(speed_on_plane(s)) + finite_contact_text(s, line_break);
 }
 
@@ -321,7 +344,7 @@ void moving_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const t
                     visualization_msgs::MarkerArray& out) {
   out.markers.push_back(spin_marker(s, frames.top, stamp));
   const double body_top = shapes.active ? shape_reach(top, shapes) : top_shape(top).stem_top;
-  add_contact_markers(s, body_top, style, body_colour(s, style.color_by), frames.contact, stamp, out);
+  add_contact_markers(s, body_top, shapes, style, body_colour(s, style.color_by), frames.contact, stamp, out);
 }
 
 void to_markers(const top_sim::Snapshot& s, const top_sim::Top& top, const top_sim::ShapeSet& shapes,

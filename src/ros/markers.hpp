@@ -37,9 +37,10 @@ Rgb readable(Rgb c, double ratio = 4.5);
 
 // A top's state in words: "NAME: regime, contact mode" and "phi 0.270 / phi* 0.270, v 1.2 mm/s" (phi* when the
 // snapshot has a stationary state, v the contact point's speed on the plane), joined by `line_break` (the label
-// above a top: "\n"); a faulted top shows its fault instead, a top at its end ("end: lying_flat") that in place
-// of regime and mode.
-std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break = ", ");
+// above a top: "\n"); with the body's `shapes` the regime names what touches ("rolling on tip and crown"). A
+// faulted top shows its fault instead, a top at its end only that end and its time ("end: lying_flat at t = 63.10 s").
+std::string status_text(const std::string& name, const top_sim::Snapshot& s, const std::string& line_break = ", ",
+                        const top_sim::ShapeSet* shapes = nullptr);
 
 // The contact point's speed along the plane [m/s]: the centre of mass's velocity without its normal part.
 double speed_on_plane(const top_sim::Snapshot& s);

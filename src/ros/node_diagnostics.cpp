@@ -61,6 +61,8 @@ void NodeDiagnostics::fill(diagnostic_updater::DiagnosticStatusWrapper& st, TopS
     st.summary(DiagnosticStatus::WARN, behind_text(top.pacer(), c, tops.size()));
   else if (node.lcm.rfind("error", 0) == 0)
     st.summary(DiagnosticStatus::WARN, "LCM off: " + node.lcm);
+  else if (sim.end_state() != top_sim::EndState::none)
+    st.summary(DiagnosticStatus::OK, std::string("ended: ") + top_sim::to_string(sim.end_state()));
   else
     st.summary(DiagnosticStatus::OK, node.paused ? "paused" : "running");
   st.add("tops", tops.size());

@@ -87,7 +87,7 @@ std::size_t NodeTop::take_steps() {
 void NodeTop::report(double real_time_factor, double publish_rate, bool paused) {
   if (sim_->end_state() != top_sim::EndState::none && !fault_reported_) {
     fault_reported_ = true;  // a named end, no fault: said once, as information
-    ROS_INFO("top_sim_node: top %s: %s (call ~reset to run again)", name_.c_str(), sim_->fault_message().c_str());
+    ROS_INFO("top_sim_node: top %s: %s (call ~reset to run again)", name_.c_str(), sim_->end_message().c_str());
   }
   if (sim_->fault() != top_sim::ContactFault::none && !fault_reported_) {
     fault_reported_ = true;
@@ -108,7 +108,9 @@ void NodeTop::report(double real_time_factor, double publish_rate, bool paused) 
              "%.3g ms period; debt beyond %.2g s is dropped)", achieved, real_time_factor, 1e3 * pacer_.budget(),
              1e3 / publish_rate, pacer_.options().max_debt);
   } else if (paused || sim_->stopped()) {
-    ROS_INFO("top_sim_node: %s: no longer falling behind", paused ? "paused" : "stopped by a contact fault");
+    ROS_INFO("top_sim_node: %s: no longer falling behind", paused                          ? "paused"
+                                                            : sim_->end_state() != top_sim::EndState::none ? "ended"
+                                                                                                   : "stopped by a fault");
   } else {
     ROS_INFO("top_sim_node: caught up: achieved real-time factor %.4g of requested %.4g", achieved, real_time_factor);
   }

@@ -116,8 +116,12 @@ class TopSimNode {
         ROS_INFO("top_sim_node: no ~scene_file or ~scene: the default scene %s",
                  top_sim_ros::default_scene_file(params_.config_dir).c_str());
       scene_ = top_sim_ros::read_node_scene(params, params_.config_dir);
+      // The scene's view hint sets the pace unless ~real_time_factor was given (the launch's argument overrides it).
+      if (!params.has("real_time_factor") && scene_.view.real_time_factor > 0.0)
+        params_.real_time_factor = scene_.view.real_time_factor;
       start_tops = top_sim_ros::read_start_tops(params, params_.config_dir, scene_);
       for (const std::string& key : top_sim_ros::reconfigure_physics_keys()) params.know(key);
+      params.know("view");  // written by the node itself (publish_view): a restart without clear_params finds it
       start = top_sim_ros::start_command(params.tree(), scene_.model, ns);
       params.check_unknown();
     } catch (const top_sim::SceneError& e) {
@@ -141,7 +145,14 @@ class TopSimNode {
     if (!start.empty())
       ROS_INFO("top_sim_node: dynamic_reconfigure values found under %s are the launch-time top's start (and "
                "~reset's)", ns.c_str());
+    publish_view();
     return true;
+  }
+
+  // The scene's view hint as ~view/camera and ~view/distance, for the rviz panel to turn the camera to.
+  void publish_view() {
+    pnh_.setParam("view/camera", std::string(top_sim::to_string(scene_.view.camera)));
+    pnh_.setParam("view/distance", scene_.view.distance);
   }
 
   // A top's topics, now or (`background`) on the opener's thread; installed into the top on the loop's thread.

@@ -132,8 +132,8 @@ TEST(AutoPatch, AutoResumesTheFullModelWhereTheSpinningDownTopWakes) {
   Simulator automatic(scene_from(patch_scene(0.1, "auto", contact, start)));
   full.advance_to(3000.0);
   automatic.advance_to(3000.0);
-  ASSERT_EQ(full.fault(), ContactFault::fallen);
-  ASSERT_EQ(automatic.fault(), ContactFault::fallen);
+  ASSERT_EQ(full.end_state(), EndState::fallen);
+  ASSERT_EQ(automatic.end_state(), EndState::fallen);
   EXPECT_EQ(automatic.handovers(), 1u);
   EXPECT_GT(automatic.reduced_seconds(), 2000.0);
   // Under auto the instability grows from the reduced state's rounding noise, so the fall moves with the rounding:

@@ -25,15 +25,16 @@ TEST(Extremes, NoSpinFallsOverInAboutAFifthOfASecond) {
   Simulator sim(scene_from(aluminium_scene("{inclination: 0.1}", "pmma", "{tilt: 0.1, spin: 0.0}")));
   const CheckedRun r = run_checked(sim, 2.0, 100.0);
   EXPECT_EQ(r.nonfinite, "");
-  ASSERT_EQ(r.result.final.fault, ContactFault::fallen) << to_string(r.result.final.fault) << ": "
-                                                         << r.result.final.fault_message;
-  EXPECT_EQ(r.result.final.regime, Regime::contact_fault);
-  EXPECT_NE(r.result.final.fault_message.find("fallen"), std::string::npos);
+  ASSERT_EQ(r.result.final.end_state, EndState::fallen) << to_string(r.result.final.fault) << ": "
+                                                           << r.result.final.fault_message;
+  EXPECT_EQ(r.result.final.fault, ContactFault::none);
+  EXPECT_EQ(r.result.final.regime, Regime::fallen);
+  EXPECT_NE(r.result.final.end_message.find("fallen"), std::string::npos);
   // Inverted pendulum about the tip: lambda = sqrt(m g f / (I_d + m f^2)) = 21 1/s; from 0.1 rad to 1.2 rad,
   // cosh(lambda t) = 12 gives 0.15 s (reference: about 0.2 s). The band allows for the sliding tip and R.
   EXPECT_GT(r.result.sim_seconds, 0.1);
   EXPECT_LT(r.result.sim_seconds, 0.3);
-  // The fault is located on the max_tilt boundary (bisection to 1e-12 s; the margin is ~1e-11 there).
+  // The end is located on the max_tilt boundary (bisection to 1e-12 s; the margin is ~1e-11 there).
   EXPECT_NEAR(r.result.final.figure_axis.z(), std::cos(1.2), 1e-6);
   top_sim_test::note("no spin: fallen at t [s]", r.result.sim_seconds);
 }
@@ -256,15 +257,16 @@ TEST(InitialFaults, TiltBeyondMaxTiltIsFallenAtTimeZero) {
   Scene scene = scene_from(aluminium_scene("{inclination: 0.0}", "pmma", "{tilt: 0.1, spin: 200.0}"));
   scene.initial.tilt = 1.3;
   Simulator sim(scene);
-  EXPECT_EQ(sim.fault(), ContactFault::fallen) << to_string(sim.fault());
+  EXPECT_EQ(sim.end_state(), EndState::fallen) << to_string(sim.fault());
+  EXPECT_EQ(sim.fault(), ContactFault::none);
   const Snapshot s = sim.snapshot();
-  EXPECT_EQ(s.regime, Regime::contact_fault);
+  EXPECT_EQ(s.regime, Regime::fallen);
   EXPECT_EQ(top_sim_test::nonfinite_fields(s), "");
   RunOptions opt;
   opt.duration = 1.0;
   const RunResult r = run(sim, opt);
   EXPECT_EQ(r.sim_seconds, 0.0);
-  EXPECT_NE(summary_json(sim.scene(), r).find("\"contact_fault\": \"t = 0 s: fallen"), std::string::npos)
+  EXPECT_NE(summary_json(sim.scene(), r).find("\"end_state_message\": \"t = 0 s: end state fallen"), std::string::npos)
       << summary_json(sim.scene(), r);
 }
 

@@ -86,7 +86,7 @@ TEST(Regime, TippeTopByItsTiltAndSlip) {
   EXPECT_EQ(classify(kThresholds, ind, false), Regime::tumbling);
 }
 
-// The codes are the message constants 0 to 8 (TopState.msg, top_state_t.lcm), each with its own name.
+// The codes are the message constants 0 to 14 (TopState.msg, top_state_t.lcm), each with its own name.
 TEST(Regime, CodesAreTheMessageConstantsWithDistinctNames) {
   std::set<std::string> names;
   for (int i = 0; i < kRegimeCount; ++i) {
@@ -96,4 +96,42 @@ TEST(Regime, CodesAreTheMessageConstantsWithDistinctNames) {
   }
   EXPECT_EQ(names.size(), static_cast<std::size_t>(kRegimeCount));
   EXPECT_STREQ(to_string(Regime::sleeping), "sleeping");
+}
+
+// A body of shapes says what touches before any tip-sphere word (physics.md section 8): two shapes, or its first
+// shape when that is a rim, roll; a rim or sphere that is not its first shape is its crown or stem; on its first
+// sphere or in flight the tip sphere's (or a tippe top's) words hold.
+TEST(Regime, ABodyOfShapesSaysWhatTouches) {
+  RegimeIndicators ind = resting();
+  ind.shape_body = true;
+  ind.runaway = true;  // would be sliding on the tip sphere
+  ind.touching = 0b11;
+  ind.touching_rims = 0b10;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::rolling);  // tip and crown
+  ind.touching = ind.touching_rims = 0b1;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::rolling);  // a disc on its edge
+  ind.touching = ind.touching_rims = 0b10;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::on_crown);
+  ind.touching = 0b10;
+  ind.touching_rims = 0;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::on_stem);
+  ind.touching = 0b1;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::sliding);  // on its tip sphere: the tip's words
+  ind.touching = 0;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::sliding);  // in flight too
+  ind.tippe = true;
+  ind.tilt = M_PI / 2;
+  ind.slip = 1.0;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::inverting);  // a tippe top on its ball, by its tilt
+  ind.touching = 0b10;
+  EXPECT_EQ(classify(kThresholds, ind, false), Regime::on_stem);
+  EXPECT_EQ(classify(kThresholds, ind, true), Regime::contact_fault);  // a fault outranks what touches
+}
+
+TEST(Regime, EndStatesHaveTheirOwnWords) {
+  EXPECT_EQ(end_regime(EndState::at_rest), Regime::at_rest);
+  EXPECT_EQ(end_regime(EndState::lying_flat), Regime::lying_flat);
+  EXPECT_EQ(end_regime(EndState::fallen), Regime::fallen);
+  for (EndState e : {EndState::at_rest, EndState::lying_flat, EndState::fallen})
+    EXPECT_STREQ(to_string(end_regime(e)), to_string(e)) << "the end regime and the end state share their word";
 }

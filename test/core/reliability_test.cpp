@@ -115,7 +115,7 @@ TEST(Reliability, EnergyResidualBoundIsASceneKey) {
   Simulator sim(scene_from(
       unstable_scene("{}", "200.0", "{method: euler, dt: 0.01, max_energy_residual: 1.0e300}")));
   sim.advance_to(0.5);
-  EXPECT_EQ(sim.fault(), ContactFault::fallen) << sim.fault_message();
+  EXPECT_EQ(sim.end_state(), EndState::fallen) << sim.fault_message();
   EXPECT_GT(sim.max_energy_residual(), 1.0);
   EXPECT_THROW(scene_from(unstable_scene("{}", "200.0", "{method: euler, max_energy_residual: 0}")), SceneError);
 }

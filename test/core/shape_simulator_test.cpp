@@ -68,7 +68,8 @@ TEST(ShapeSimulator, DroppedDiscLandsOnItsRimAndEndsLyingFlat) {
   EXPECT_EQ(sim.fault(), top_sim::ContactFault::none);
   EXPECT_EQ(sim.end_state(), top_sim::EndState::lying_flat);
   EXPECT_LT(sim.time(), 5.0);
-  EXPECT_NE(sim.fault_message().find("lying_flat"), std::string::npos) << sim.fault_message();
+  EXPECT_NE(sim.end_message().find("lying_flat"), std::string::npos) << sim.end_message();
+  EXPECT_EQ(sim.fault_message(), "") << "an end is no fault";
   const top_sim::Snapshot s = sim.snapshot();
   EXPECT_EQ(s.end_state, top_sim::EndState::lying_flat);
   EXPECT_EQ(s.fault, top_sim::ContactFault::none);
@@ -179,6 +180,10 @@ TEST(ShapeSimulator, EulerDiskEndsLyingFlatWithoutClustering) {
   EXPECT_GT(closest, 1e-6);              // s: no clustering
   EXPECT_GT(last_tenth, 2 * second_before);  // ever faster towards the end (74 against 32 1.5 s before)
   EXPECT_LT(sim.max_energy_residual(), 1e-5);
+  // A disc on its edge rolls (physics.md section 8), whatever its contact does, to its end's word.
+  const std::array<double, top_sim::kRegimeCount> seconds = sim.regime_seconds();
+  EXPECT_NEAR(seconds[code(top_sim::Regime::rolling)], sim.time(), 1e-9);
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::lying_flat);
 }
 
 }  // namespace

@@ -166,7 +166,32 @@ TEST(TwoShapeSimulator, TopLifeFallsOntoItsCrownAndComesToRestOnTipAndCrown) {
   ASSERT_GE(switches.size(), 1u);
   EXPECT_GT(switches.front().t, 10.0);  // it sleeps first
   EXPECT_LT(switches.back().t - switches.front().t, 1e-3);  // the fall's events settle at once
+  EXPECT_EQ(switches.front().kind, top_sim::ModeSwitchKind::lift_off);  // the crown's impact throws the tip off
   EXPECT_LT(sim.max_energy_residual(), 1e-7);
+  // The words say what touches (physics.md section 8): on its tip before the fall, rolling on tip and crown from the
+  // fall to the end (within one 0.1 s regime point of it), then the end's own word.
+  const std::array<double, top_sim::kRegimeCount> seconds = sim.regime_seconds();
+  const double fall = switches.front().t, on_tip = fall, rolling = sim.time() - fall;
+  EXPECT_NEAR(seconds[code(top_sim::Regime::rolling)], rolling, top_sim::Simulator::kRegimeCadence);
+  double tip_words = 0.0;
+  for (top_sim::Regime r : {top_sim::Regime::nutating, top_sim::Regime::precessing, top_sim::Regime::sleeping})
+    tip_words += seconds[code(r)];
+  EXPECT_NEAR(tip_words, on_tip, top_sim::Simulator::kRegimeCadence);
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::at_rest);
+}
+
+// The tippe top with its stem ends on its stem: the word says so, from the hand-over on (the stem alone touches).
+TEST(TwoShapeSimulator, TippeTopStemIsOnItsStemAfterTurningOver) {
+  Simulator sim(top_sim::load_scene(top_sim_test::scene_path("tippe_top_stem")));
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::upright);
+  sim.advance_to(sim.scene().duration);
+  ASSERT_FALSE(sim.stopped()) << sim.fault_message();
+  EXPECT_EQ(sim.snapshot().touching, kStem);
+  EXPECT_EQ(sim.snapshot().regime, top_sim::Regime::on_stem);
+  const std::array<double, top_sim::kRegimeCount> seconds = sim.regime_seconds();
+  EXPECT_GT(seconds[code(top_sim::Regime::on_stem)], 3.0);  // measured 4.0 s of the 8
+  EXPECT_GT(seconds[code(top_sim::Regime::inverting)], 0.5);
+  EXPECT_EQ(seconds[code(top_sim::Regime::rolling)], 0.0);
 }
 
 // Leine & Glocker's tippe top with their Contensou patch (tippe_top_contensou): no shape ever below the plane, also

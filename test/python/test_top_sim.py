@@ -300,8 +300,9 @@ def test_dropped_disc_touches_after_free_fall_and_ends_lying_flat():
     assert t[-1] < 5.0  # stopped at the end state
     end = sim.snapshot()
     assert end["end_state"] == "lying_flat" and sim.end_state == "lying_flat"
-    assert "lying_flat" in end["end_state_message"]
-    assert end["fault"] is None  # a named end, no fault
+    assert "lying_flat" in end["end_state_message"] and sim.end_message == end["end_state_message"]
+    assert end["fault"] is None and sim.fault is None and sim.fault_message == ""  # a named end, no fault
+    assert end["regime"] == "lying_flat"  # the end's word is the regime
     assert end["touching"] == 1 and isinstance(end["touching"], int)
 
 
@@ -316,3 +317,14 @@ def test_rolling_disc_touches_throughout():
     assert snap["touching"] == 1 and snap["contact_mode"] == "rolling"
     assert snap["end_state"] is None and snap["end_state_message"] == ""
     assert top_sim.Simulator("default").snapshot()["touching"] == 1  # no shapes: the tip sphere, bit 0
+
+
+def test_a_top_that_falls_ends_fallen_without_a_fault():
+    # No spin: it falls over like an inverted pendulum (about 0.15 s); a fall is an end of its story (issue 46).
+    sim = top_sim.Simulator({"top": "aluminium", "plane": {"inclination": 0.1}, "friction": "pmma",
+                             "initial": {"tilt": 0.1, "spin": 0.0}})
+    sim.run(2.0)
+    snap = sim.snapshot()
+    assert sim.end_state == "fallen" and snap["end_state"] == "fallen" and snap["regime"] == "fallen"
+    assert sim.fault is None and sim.fault_message == "" and snap["fault"] is None
+    assert "max_tilt" in sim.end_message and 0.1 < sim.time < 0.3

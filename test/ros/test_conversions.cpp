@@ -288,6 +288,34 @@ TEST(Markers, LabelShowsRegimeModePhiAndSpeed) {
   EXPECT_EQ(find_marker_or_fail(a, "label").type, visualization_msgs::Marker::TEXT_VIEW_FACING);
 }
 
+// A body of shapes says what it touches with, by the shapes' names ("shape i" unnamed); a top at its end shows only
+// that end and its time, no motion that has stopped (issue 46).
+TEST(Markers, LabelNamesTheTouchingShapesAndAnEnd) {
+  top_sim::ShapeSet shapes;
+  shapes.shape[0] = {top_sim::ShapeKind::sphere, -0.010, 1.5e-3, {'t', 'i', 'p'}};
+  shapes.shape[1] = {top_sim::ShapeKind::rim, 0.004, 0.02, {'c', 'r', 'o', 'w', 'n'}};
+  shapes.shape[2] = {top_sim::ShapeKind::sphere, 0.02, 1e-3};
+  shapes.count = 3;
+  shapes.active = top_sim::shapes_active(shapes);
+  top_sim::Snapshot s;
+  s.contact_mode = top_sim::ContactMode::slipping;
+  s.phi = 0.5;
+  s.regime = top_sim::Regime::rolling;
+  s.touching = 0b011;
+  EXPECT_EQ(top_sim_ros::status_text("top", s, ", ", &shapes), "top: rolling on tip and crown, slipping, phi 0.500, v 0.00 mm/s");
+  EXPECT_EQ(top_sim_ros::status_text("top", s), "top: rolling, slipping, phi 0.500, v 0.00 mm/s") << "no shapes: the word";
+  s.touching = 0b111;
+  EXPECT_EQ(top_sim_ros::status_text("", s, ", ", &shapes).substr(0, 34), "rolling on tip, crown and shape 2,");
+  s.regime = top_sim::Regime::on_crown;
+  s.touching = 0b010;
+  EXPECT_EQ(top_sim_ros::status_text("", s, "\n", &shapes), "on crown, slipping\nphi 0.500, v 0.00 mm/s");
+  s.regime = top_sim::Regime::at_rest;
+  s.end_state = top_sim::EndState::at_rest;
+  s.t = 69.7315;
+  s.touching = 0b011;
+  EXPECT_EQ(top_sim_ros::status_text("top", s, "\n", &shapes), "top: end: at_rest at t = 69.73 s");
+}
+
 // Label text reads on what is behind it: every regime's and mode's label colour has a WCAG contrast ratio of at
 // least 4.5:1 against rviz's background (the one rviz/top_sim.rviz sets) and against the plane square over it,
 // and keeps the hue of its body colour (mixed with white only). The ratio itself: 21 for black on white.
