@@ -358,3 +358,38 @@ TEST(SceneShapes, OneSphereIsTheTipSphereAndARimRunsThePointContact) {
   expect_error(disc + "}\nmodel: {normal_force: static}\n", "model.normal_force", "not with top.shapes yet",
                "constrained normal force");
 }
+
+namespace {
+
+// A view hint (issue 46): a camera the viewer knows, a positive distance and pace; anything else names the key, the
+// value and the allowed values.
+TEST(SceneErrors, ViewHintOutOfRange) {
+  expect_error(kTop + "view: {camera: side}\n", "view.camera", "'side' is not one of", "low | top | follow");
+  expect_error(kTop + "view: {distance: 0.0}\n", "view.distance", "0 is out of range", "in (0, 100] [m]");
+  expect_error(kTop + "view: {distance: -1}\n", "view.distance", "-1 is out of range", "in (0, 100] [m]");
+  expect_error(kTop + "view: {real_time_factor: 0}\n", "view.real_time_factor", "0 is out of range", "in (0, 1000]");
+  expect_error(kTop + "view: {zoom: 2}\n", "view.zoom", "unknown key", "camera");
+  const Scene s = scene_from(kTop + "view: {camera: low, distance: 0.2, real_time_factor: 0.25}\n");
+  EXPECT_EQ(s.view.camera, ViewCamera::low);
+  EXPECT_EQ(s.view.distance, 0.2);
+  EXPECT_EQ(s.view.real_time_factor, 0.25);
+  EXPECT_EQ(scene_from(kTop).view.camera, ViewCamera::unset);
+}
+
+// A shape's name is a plain identifier (issue 46): what a label can say.
+TEST(SceneErrors, ShapeNameNotAPlainIdentifier) {
+  const std::string body = "top: {mass: 0.025, inertia_axial: 5.0e-6, inertia_transverse: 3.0e-6, shapes: [";
+  const std::string rest = "{rim: {offset: 0.004, radius: 0.02}}]}\n";
+  for (const char* bad : {"'2nd'", "'tip top'", "'a-b'", "''", "averyveryverylongname", "[a]"}) {
+    const std::string msg =
+        error_of(body + "{sphere: {offset: -0.01, radius: 1.5e-3, name: " + bad + "}}, " + rest, "bad_name.yaml");
+    EXPECT_NE(msg.find("top.shapes[0].sphere.name: "), std::string::npos) << msg;
+    EXPECT_NE(msg.find("is not a plain identifier"), std::string::npos) << msg;
+  }
+  const Scene s = scene_from(body + "{sphere: {offset: -0.01, radius: 1.5e-3, name: tip_1}}, " + rest);
+  EXPECT_EQ(shape_name(s.model.shapes, 0), "tip_1");
+  EXPECT_EQ(shape_name(s.model.shapes, 1), "shape 1");
+  EXPECT_EQ(touching_names(s.model.shapes, 0b11), "tip_1 and shape 1");
+}
+
+}  // namespace
