@@ -8,6 +8,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QTimer>
 #include <QStackedWidget>
 #include <QVBoxLayout>
 #include <fstream>
@@ -16,6 +17,11 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/package.h>
+#include <ros/param.h>
+#include <rviz/properties/property.h>
+#include <rviz/view_controller.h>
+#include <rviz/view_manager.h>
+#include <rviz/visualization_manager.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -380,6 +386,27 @@ ControlPanel::ControlPanel(QWidget* parent) : rviz::Panel(parent) {
     widget_->set_node(node_->text().trimmed().toStdString());
     Q_EMIT configChanged();
   });
+}
+
+void ControlPanel::onInitialize() {
+  view_timer_ = new QTimer(this);
+  connect(view_timer_, &QTimer::timeout, this, &ControlPanel::apply_view_hint);
+  view_timer_->start(500);  // until the node has set its view (it may start after rviz)
+}
+
+void ControlPanel::apply_view_hint() {
+  const std::string node = node_->text().trimmed().toStdString();
+  std::string camera;
+  double distance = 0.0;
+  if (!ros::param::get(node + "/view/camera", camera)) return;
+  ros::param::get(node + "/view/distance", distance);
+  view_timer_->stop();
+  rviz::ViewController* view = vis_manager_->getViewManager()->getCurrent();
+  if (!view || view->getClassId() != "rviz/Orbit") return;  // another camera is the user's choice: it stays
+  const std::optional<OrbitView> pose = orbit_view(camera, distance, view->subProp("Distance")->getValue().toDouble());
+  if (!pose) return;
+  view->subProp("Pitch")->setValue(pose->pitch);
+  view->subProp("Distance")->setValue(pose->distance);
 }
 
 void ControlPanel::load(const rviz::Config& config) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <QWidget>
+#include <optional>
 #include <map>
 #include <string>
 
@@ -17,6 +18,7 @@ class QLabel;
 class QLineEdit;
 class QPushButton;
 class QStackedWidget;
+class QTimer;
 
 namespace top_sim_rviz {
 
@@ -89,12 +91,17 @@ class ControlPanel : public rviz::Panel {
 
  public:
   explicit ControlPanel(QWidget* parent = nullptr);
+  void onInitialize() override;
   void load(const rviz::Config& config) override;
   void save(rviz::Config config) const override;
 
  private:
+  // Turns rviz's camera to the node's scene's view hint (~view/camera, ~view/distance), once, when the node is up.
+  void apply_view_hint();
+
   ControlWidget* widget_;
   QLineEdit* node_;
+  QTimer* view_timer_ = nullptr;
 };
 
 }  // namespace top_sim_rviz

@@ -253,4 +253,14 @@ std::string spin_from_handle(double spin_now, double drag, double& spin) {
   return top_sim::validate(c, top_sim::Model());
 }
 
+std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance) {
+  OrbitView v;
+  v.distance = distance > 0.0 ? distance : current_distance;
+  if (camera == "low") v.pitch = 0.12;  // a tippe top's stem and a disc's edge show from the side
+  else if (camera == "top") v.pitch = 1.45;
+  else if (camera == "follow") v.pitch = 0.55;  // rviz/top_sim.rviz's
+  else return std::nullopt;
+  return v;
+}
+
 }  // namespace top_sim_rviz

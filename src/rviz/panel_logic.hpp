@@ -100,4 +100,13 @@ std::string inclination_from_ring(double alpha_now, double w, double x, double y
 // The handle dragged `drag` metres along the normal: spin = spin_now + kSpinPerMetre * drag.
 std::string spin_from_handle(double spin_now, double drag, double& spin);
 
+// rviz's orbit camera for a scene's view hint (docs/interfaces.md, `view`), which the node sets as ~view/camera and
+// ~view/distance: `low` looks from the side just above the plane, `top` from above, `follow` as the shipped config
+// does; a distance of 0 keeps `current_distance`. None for the camera "unset" (or a word the panel does not know).
+struct OrbitView {
+  double pitch = 0.0;     // [rad] above the plane
+  double distance = 0.0;  // [m] from the follow frame
+};
+std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance);
+
 }  // namespace top_sim_rviz

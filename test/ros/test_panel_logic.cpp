@@ -178,3 +178,17 @@ TEST(PanelLogic, FieldsFollowTheTopUnlessEdited) {
   EXPECT_EQ(top_sim_rviz::field_text(-150.0, 1), "-150.0");
   EXPECT_EQ(top_sim_rviz::field_text(2.5, -1), "2.5");
 }
+
+// A scene's view hint as rviz's orbit camera: low from the side, top from above, follow as the shipped config; the
+// hint's distance, or the camera's own when the hint has none; nothing for an unset or unknown camera.
+TEST(PanelLogic, ViewHintBecomesAnOrbitCamera) {
+  using top_sim_rviz::orbit_view;
+  ASSERT_TRUE(orbit_view("low", 0.15, 0.27));
+  EXPECT_LT(orbit_view("low", 0.15, 0.27)->pitch, 0.2);
+  EXPECT_EQ(orbit_view("low", 0.15, 0.27)->distance, 0.15);
+  EXPECT_GT(orbit_view("top", 0.0, 0.27)->pitch, 1.3);
+  EXPECT_EQ(orbit_view("top", 0.0, 0.27)->distance, 0.27);
+  EXPECT_EQ(orbit_view("follow", 0.0, 0.3)->pitch, 0.55);
+  EXPECT_FALSE(orbit_view("unset", 0.2, 0.27));
+  EXPECT_FALSE(orbit_view("side", 0.2, 0.27));
+}
