@@ -40,7 +40,8 @@ class DiscEnd(unittest.TestCase):
             self.assertIn(ns, last, ns + ' not sent again after the end')
             self.assertEqual(last[ns].action, Marker.ADD, ns)
         self.assertGreater(len(last['touching'].points), 0)
-        self.assertTrue(last['label'].text.split('\n')[0].endswith('end: lying_flat'), last['label'].text)
+        self.assertIn('end: lying_flat at t = ', last['label'].text)
+        self.assertNotIn('phi', last['label'].text)  # nothing of the motion that stopped
         for ns in ('tip', 'stem'):
             self.assertEqual(last[ns].action, Marker.DELETE, ns + ': not on a disc')
         # A tf listener started after the end (rviz opened on an ended run) gets the disc's frames: /tf_static
