@@ -9,4 +9,8 @@ constexpr double kHeight = 0.03;   // [m] above the contact point
 constexpr double kScale = 0.04;    // [m] the interactive marker's scale: its ring and arrows reach about this far
 constexpr double kTop = kHeight + kScale;  // [m] the highest point of the controls above the contact point
 
+// [m] where the controls rest beside a body that reaches `reach` from its contact point (top_mesh.hpp's
+// reach_from_contact, the node's ~view/reach): clear of it by half the ring, at least kOffsetX.
+inline double offset_x(double reach) { return reach + 0.5 * kScale > kOffsetX ? reach + 0.5 * kScale : kOffsetX; }
+
 }  // namespace top_sim_ros::control_layout

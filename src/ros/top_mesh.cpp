@@ -129,6 +129,11 @@ double rim_thickness(const top_sim::Top& top, const top_sim::ShapeSet& shapes, s
   return kThinRim * rho;
 }
 
+double reach_from_contact(const top_sim::Top& top, const top_sim::ShapeSet& shapes) {
+  if (shapes.active) return 2.0 * shape_reach(top, shapes);
+  return top_shape(top).body_radius + std::abs(top.com_offset) + top.tip_radius;
+}
+
 double shape_reach(const top_sim::Top& top, const top_sim::ShapeSet& shapes) {
   double reach = 0.0;
   for (std::size_t i = 0; i < shapes.count; ++i) {

@@ -61,6 +61,10 @@ struct ShapeMesh {
 // [m] no drawn point of the shapes is farther than this from the centre of mass (a rim's thickness either side).
 double shape_reach(const top_sim::Top& top, const top_sim::ShapeSet& shapes);
 
+// [m] how far the drawn body reaches from its contact point, at any tilt: the diameter of the shapes' reach about
+// the centre of mass; an ordinary top's body radius plus its centre of mass's height (where the body is widest).
+double reach_from_contact(const top_sim::Top& top, const top_sim::ShapeSet& shapes);
+
 // Each sphere as a sphere at its centre, each rim as a disc of its radius normal to z, consecutive shapes along z
 // joined by the truncated cone between their widest circles. A lone rim's thickness goes from its circle towards
 // +z when `rim_up`, else -z: the side away from the plane, so its circle stays the lowest drawn edge, lying flat

@@ -23,6 +23,7 @@
 #include <ros/package.h>
 
 #include "state_output.hpp"
+#include "top_mesh.hpp"
 #include "top_input.hpp"
 #include "top_set.hpp"
 #include "topic_opener.hpp"
@@ -149,10 +150,12 @@ class TopSimNode {
     return true;
   }
 
-  // The scene's view hint as ~view/camera and ~view/distance, for the rviz panel to turn the camera to.
+  // The scene's view hint as ~view/camera and ~view/distance, for the rviz panel to turn the camera to, and the
+  // body's reach from its contact point, ~view/reach, for top_sim_interactive to rest its controls beside it.
   void publish_view() {
     pnh_.setParam("view/camera", std::string(top_sim::to_string(scene_.view.camera)));
     pnh_.setParam("view/distance", scene_.view.distance);
+    pnh_.setParam("view/reach", top_sim_ros::reach_from_contact(scene_.model.top, scene_.model.shapes));
   }
 
   // A top's topics, now or (`background`) on the opener's thread; installed into the top on the loop's thread.

@@ -25,10 +25,11 @@ using visualization_msgs::InteractiveMarker;
 using visualization_msgs::InteractiveMarkerControl;
 using visualization_msgs::InteractiveMarkerFeedback;
 
-// Where the controls rest in the top's contact frame: beside the top (plane +x), small, not over its body or label.
-geometry_msgs::Pose rest_pose() {
+// Where the controls rest in the top's contact frame: beside the top (plane +x) and clear of a body that reaches
+// `reach` from its contact point, small, not over its body or label.
+geometry_msgs::Pose rest_pose(double reach) {
   geometry_msgs::Pose p;
-  p.position.x = top_sim_ros::control_layout::kOffsetX;
+  p.position.x = top_sim_ros::control_layout::offset_x(reach);
   p.position.z = top_sim_ros::control_layout::kHeight;
   p.orientation.w = 1.0;
   return p;
@@ -115,7 +116,8 @@ class InteractiveTops {
     m.description = top + ": ring tilts the plane, arrow sets the spin (1 cm = " +
                     std::to_string(static_cast<int>(top_sim_rviz::kSpinPerMetre / 100.0)) + " rad/s)";
     m.scale = top_sim_ros::control_layout::kScale;
-    m.pose = rest_pose();
+    ros::param::get(node_ + "/view/reach", reach_);  // set by the node at start; up by now, its tops are
+    m.pose = rest_pose(reach_);
     const double r = std::sqrt(0.5);  // control orientations: their x axis is the axis they act along
     m.controls.push_back(control("tilt", "Turn the ring and release to tilt the plane of top " + top + ".",
                                  InteractiveMarkerControl::ROTATE_AXIS, 1.0, 0.0, 0.0, 0.0));  // plane x
@@ -139,14 +141,14 @@ class InteractiveTops {
       error = top_sim_rviz::inclination_from_ring(now.alpha, q.w, q.x, q.y, q.z, c.inclination);
       c.set_inclination = true;
     } else if (f->control_name == "spin") {
-      error = top_sim_rviz::spin_from_handle(now.spin, f->pose.position.z - rest_pose().position.z, c.spin);
+      error = top_sim_rviz::spin_from_handle(now.spin, f->pose.position.z - rest_pose(reach_).position.z, c.spin);
       c.set_spin = true;
     } else {
       return;
     }
     if (error.empty()) send(top, c);
     else ROS_WARN("top_sim_interactive: top %s: %s (not sent)", top.c_str(), error.c_str());
-    server_.setPose(f->marker_name, rest_pose());
+    server_.setPose(f->marker_name, rest_pose(reach_));
     server_.applyChanges();
   }
 
@@ -179,6 +181,7 @@ class InteractiveTops {
   }
 
   std::string node_, contact_frame_;
+  double reach_ = 0.0;  // [m] the launch-time top's body from its contact point (~view/reach)
   ros::NodeHandle nh_;
   interactive_markers::InteractiveMarkerServer server_;
   interactive_markers::MenuHandler menu_;

@@ -957,3 +957,20 @@ TEST(ShapeMarkers, LabelShowsTheEndState) {
   EXPECT_EQ(text.rfind("d: end: lying_flat at t = ", 0), 0u) << text;
   EXPECT_EQ(text.find("phi"), std::string::npos) << "nothing of the motion that stopped: " << text;
 }
+
+namespace {
+
+// The interactive controls rest beside the body, out of its way (issue 46): Euler's disk reaches twice its shapes'
+// reach from its contact point, and the controls rest beyond that; an ordinary top keeps the fixed offset.
+TEST(ControlLayout, ControlsRestBesideTheBody) {
+  const top_sim::Scene disk = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/euler_disk.yaml");
+  const double reach = top_sim_ros::reach_from_contact(disk.model.top, disk.model.shapes);
+  EXPECT_GT(reach, 2.0 * 0.0375);  // the disc's diameter at least
+  EXPECT_GE(top_sim_ros::control_layout::offset_x(reach) - 0.5 * top_sim_ros::control_layout::kScale, reach);
+  const top_sim::Scene top = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml");
+  const double top_reach = top_sim_ros::reach_from_contact(top.model.top, top.model.shapes);
+  EXPECT_LT(top_reach, top_sim_ros::control_layout::kOffsetX);
+  EXPECT_EQ(top_sim_ros::control_layout::offset_x(top_reach), top_sim_ros::control_layout::kOffsetX);
+}
+
+}  // namespace
