@@ -1,6 +1,7 @@
 #include "control_panel.hpp"
 
 #include <QComboBox>
+#include <QEvent>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -16,6 +17,8 @@
 #include <dynamic_reconfigure/Reconfigure.h>
 #include <pluginlib/class_list_macros.hpp>
 #include <ros/package.h>
+#include <rviz/render_panel.h>
+#include <rviz/visualization_manager.h>
 #include <std_msgs/String.h>
 #include <std_srvs/SetBool.h>
 #include <std_srvs/Trigger.h>
@@ -380,6 +383,26 @@ ControlPanel::ControlPanel(QWidget* parent) : rviz::Panel(parent) {
     widget_->set_node(node_->text().trimmed().toStdString());
     Q_EMIT configChanged();
   });
+}
+
+// rviz 1.14 goes on rendering into its main window for a few frames after closing it at shutdown (SIGINT, Ctrl-C,
+// File > Quit); under Mesa's llvmpipe the framebuffer is then 0 x 0 and the clear writes past its 0-byte tile
+// arrays, corrupting the heap: rviz died with -11 or -6 in most runs with this config and a node (issue 46). While
+// the window is hidden nothing is drawn, so rendering stops with it and starts again when it shows.
+void ControlPanel::onInitialize() {
+  frame_ = vis_manager_->getRenderPanel() ? vis_manager_->getRenderPanel()->window() : nullptr;
+  if (!frame_) return;
+  frame_->installEventFilter(this);
+  connect(vis_manager_, &QObject::destroyed, this, [this] {  // rviz deletes its manager before the panels
+    frame_->removeEventFilter(this);
+    frame_ = nullptr;
+  });
+}
+
+bool ControlPanel::eventFilter(QObject* watched, QEvent* event) {
+  if (frame_ && watched == frame_ && event->type() == QEvent::Hide) vis_manager_->stopUpdate();
+  if (frame_ && watched == frame_ && event->type() == QEvent::Show) vis_manager_->startUpdate();
+  return rviz::Panel::eventFilter(watched, event);
 }
 
 void ControlPanel::load(const rviz::Config& config) {

@@ -89,12 +89,15 @@ class ControlPanel : public rviz::Panel {
 
  public:
   explicit ControlPanel(QWidget* parent = nullptr);
+  void onInitialize() override;
   void load(const rviz::Config& config) override;
   void save(rviz::Config config) const override;
+  bool eventFilter(QObject* watched, QEvent* event) override;  // rviz's window hidden: no rendering (onInitialize)
 
  private:
   ControlWidget* widget_;
   QLineEdit* node_;
+  QWidget* frame_ = nullptr;  // rviz's main window
 };
 
 }  // namespace top_sim_rviz
