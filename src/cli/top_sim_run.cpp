@@ -88,15 +88,16 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
 // Real time (factor 1), paced by top_sim::Pacer like top_sim_node: each sample waits for its wall-clock instant, then
 // goes out on LCM with the achieved factor of the last wall second (and to the CSV when one is written). A sample
 // more than 0.5 s late re-anchors the clock (the debt is dropped) instead of rushing the backlog out.
-void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, double rate, double t0,
+void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, double rate, const top_sim::Simulator& sim,
                      top_sim::RunOptions& opt) {
+  const double t0 = sim.time();
   using clock = std::chrono::steady_clock;
   const clock::time_point wall0 = clock::now();
   auto wall_now = [wall0] { return std::chrono::duration<double>(clock::now() - wall0).count(); };
   auto pacer = std::make_shared<top_sim::Pacer>(1.0, rate, 0.0, t0);
   auto write_csv = opt.on_sample;
   opt.sample_rate = rate;
-  opt.on_sample = [&lcm, channel, write_csv, wall0, wall_now, pacer](const top_sim::Snapshot& s) {
+  opt.on_sample = [&lcm, &sim, channel, write_csv, wall0, wall_now, pacer](const top_sim::Snapshot& s) {
     const double at = pacer->due(wall_now(), s.t);
     std::this_thread::sleep_until(wall0 + std::chrono::duration_cast<clock::duration>(
                                               std::chrono::duration<double>(at)));
@@ -110,7 +111,8 @@ void stream_over_lcm(top_sim_lcm::Publisher& lcm, const std::string& channel, do
         std::cerr << "top_sim_run: caught up at t = " << s.t << " s\n";
     }
     static bool warned = false;  // one message, not one per sample
-    if (!lcm.publish(s, {pacer->achieved_factor(), 1.0, false}) && !warned && (warned = true))
+    const char* law = top_sim::to_string(sim.model().friction.kind);  // in force: scene events may change it
+    if (!lcm.publish(s, {pacer->achieved_factor(), 1.0, false, law}) && !warned && (warned = true))
       std::cerr << "top_sim_run: LCM publish on " << channel << " failed at t = " << s.t << " s\n";
     if (write_csv) write_csv(s);
   };
@@ -211,7 +213,7 @@ int main(int argc, char** argv) {
       std::cerr << "top_sim_run: --lcm = '" << args.lcm_url << "': " << lcm->error() << "\n";
       return 2;
     }
-    stream_over_lcm(*lcm, args.lcm_channel, args.rate, sim.time(), opt);
+    stream_over_lcm(*lcm, args.lcm_channel, args.rate, sim, opt);
   }
 #endif
   const RunResult r = run(sim, opt);

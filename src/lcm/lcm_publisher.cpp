@@ -54,6 +54,7 @@ void to_lcm(const top_sim::Snapshot& s, const Pacing& pacing, top_sim::top_state
   out.rotor_spin = s.rotor_spin;
   out.slip = s.slip;
   out.mu = s.mu;
+  out.friction_law = pacing.friction_law;
   out.normal_force = s.normal_force;
   copy3(s.friction_force, out.friction_force);
   out.drilling_torque = s.drilling_torque;

@@ -11,11 +11,13 @@ namespace top_sim { class top_state_t; }
 
 namespace top_sim_lcm {
 
-// What the streaming adapter adds to a snapshot (TopState's real_time_factor, requested_real_time_factor, paused).
+// What the streaming adapter adds to a snapshot (TopState's real_time_factor, requested_real_time_factor, paused,
+// and friction_law: the model's, which the snapshot does not carry).
 struct Pacing {
   double achieved = 0.0;   // simulated seconds per wall second
   double requested = 1.0;  // 0 = as fast as possible
   bool paused = false;
+  const char* friction_law = "";  // the law in force (top_sim::to_string of the model's)
 };
 
 // Field-by-field copy of the snapshot and the pacing.

@@ -74,6 +74,7 @@ void print(const top_sim::top_state_t& m, std::ostream& out) {
       << "\nfigure_axis: " << vec(m.figure_axis, 3) << "\nspin: " << format_number(m.spin)
       << "\nhas_rotor: " << flag(m.has_rotor) << "\nrotor_spin: " << format_number(m.rotor_spin)
       << "\nslip: " << format_number(m.slip) << "\nmu: " << format_number(m.mu)
+      << "\nfriction_law: \"" << m.friction_law << "\""
       << "\nnormal_force: " << format_number(m.normal_force) << "\nfriction_force: " << vec(m.friction_force, 3)
       << "\ndrilling_torque: " << format_number(m.drilling_torque)
       << "\npatch_radius: " << format_number(m.patch_radius)

@@ -385,9 +385,11 @@ visualization_msgs::Marker trail_chunk_marker(const Trail::Chunk& chunk, const r
 visualization_msgs::Marker trail_head_marker(const Trail& trail, const Eigen::Vector3d& contact,
                                              const ros::Time& stamp, const Frames& frames, bool attached) {
   using visualization_msgs::Marker;
+  // Frame-locked in both frames: rviz 1.14 keeps a marker that came frame-locked in its frame-locked set when an
+  // update of the same (ns, id, type) is not, and then aborts (ROS_ASSERT in MarkerBase::updateFrameLocked: SIGTRAP,
+  // issue 46); the plane frame moves only with alpha, so re-reading its tf each frame costs nothing wrong.
   Marker m = marker(attached ? frames.contact : frames.plane, stamp, "trail_head", kTrailHeadMarker,
                     Marker::LINE_STRIP, kTrailColour);
-  m.frame_locked = attached;
   m.scale.x = 0.0015;
   const Eigen::Vector3d origin = attached ? contact : Eigen::Vector3d::Zero();
   if (!trail.empty())

@@ -15,6 +15,13 @@
 
 namespace top_sim_ros {
 
+namespace {
+
+// The law in force (the scene's, as commands changed it): TopState's and LCM's friction_law; the snapshot has no law.
+const char* friction_law(const NodeTop& top) { return top_sim::to_string(top.sim().model().friction.kind); }
+
+}  // namespace
+
 StateOutput::StateOutput(ros::NodeHandle& nh, ros::NodeHandle& pnh, const NodeParameters& params, double stamp_origin)
     : params_(params), stamp_origin_(stamp_origin), follow_request_(params.follow) {
   // A new subscriber (rviz, rosbag record) gets every marker at the next tick, the trail's chunks included.
@@ -121,7 +128,8 @@ void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
   top.output.trail.add(pose.contact_point, stamp, params_.path_resolution,
                        static_cast<std::size_t>(params_.path_length));
   add_transforms(top, pose, stamp);
-  if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused);
+  if (top.launch_top())
+    publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused, friction_law(top));
   if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
   top_sim::TopState& msg = flags.array ? next_state(top) : own_;
   fill_state(top, s, stamp, flags, msg);
@@ -140,6 +148,7 @@ void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros
   msg.real_time_factor = top.pacer().achieved_factor();
   msg.requested_real_time_factor = flags.requested_factor;
   msg.paused = flags.paused;
+  msg.friction_law = friction_law(top);  // what the panel's law box shows
 }
 
 // The next entry of the array, reused from the last tick when there is one (its strings keep their storage); its
@@ -314,9 +323,9 @@ void StateOutput::publish_paths(TopSet& tops, double wall) {
 }
 
 void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor,
-                              bool paused) {
+                              bool paused, const char* friction_law) {
 #ifdef TOP_SIM_HAVE_LCM
-  if (lcm_ && !lcm_->publish(s, {achieved_factor, requested_factor, paused}) && !lcm_send_failed_) {
+  if (lcm_ && !lcm_->publish(s, {achieved_factor, requested_factor, paused, friction_law}) && !lcm_send_failed_) {
     ROS_ERROR("top_sim_node: LCM publish on %s failed (reported once)", lcm_->channel().c_str());
     lcm_send_failed_ = true;
   }
@@ -325,6 +334,7 @@ void StateOutput::publish_lcm(const top_sim::Snapshot& s, double achieved_factor
   (void)achieved_factor;
   (void)requested_factor;
   (void)paused;
+  (void)friction_law;
 #endif
 }
 

@@ -73,7 +73,8 @@ class StateOutput {
   MarkerStyle style(const NodeTop& top) const;
   void publish_markers(TopSet& tops, double wall);
   void publish_paths(TopSet& tops, double wall);
-  void publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor, bool paused);
+  void publish_lcm(const top_sim::Snapshot& s, double achieved_factor, double requested_factor, bool paused,
+                   const char* friction_law);
   void open_lcm();
 
   NodeParameters params_;

@@ -1,6 +1,7 @@
 #include "control_panel.hpp"
 
 #include <QComboBox>
+#include <QEvent>
 #include <QFormLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
@@ -19,6 +20,7 @@
 #include <ros/package.h>
 #include <ros/param.h>
 #include <rviz/properties/property.h>
+#include <rviz/render_panel.h>
 #include <rviz/view_controller.h>
 #include <rviz/view_manager.h>
 #include <rviz/visualization_manager.h>
@@ -67,21 +69,33 @@ QHBoxLayout* field_with_button(QLineEdit* field, QPushButton* b) {
 
 }  // namespace
 
-// The dock of rviz/top_sim.rviz leaves the widget about 330 x 560 px: the groups are stacked so that every field
-// is wider than its text and inclination, spin and Apply come right after the top's state.
+// The dock of rviz/top_sim.rviz leaves the widget about 330 x 620 px: the groups are stacked so that every field
+// is wider than its text and inclination, spin and Apply come right after the top's state. The groups scroll in a
+// smaller dock (never sideways); the answer stays below them, in view whatever the dock's height.
 ControlWidget::ControlWidget(QWidget* parent) : QWidget(parent) {
+  auto* groups = new QWidget(this);
+  auto* stack = new QVBoxLayout(groups);
+  stack->setContentsMargins(0, 0, 0, 0);
+  stack->setSpacing(4);
+  stack->addWidget(build_top());
+  stack->addWidget(build_change());
+  stack->addWidget(build_run());
+  stack->addWidget(build_spawn());
+  stack->addStretch();
+  scroll_ = new QScrollArea(this);
+  scroll_->setWidget(groups);
+  scroll_->setWidgetResizable(true);
+  scroll_->setFrameShape(QFrame::NoFrame);
+  scroll_->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  message_label_ = new QLabel(this);
+  message_label_->setWordWrap(true);  // a long answer wraps inside the dock
+  message_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  message_label_->setSizePolicy(QSizePolicy::Preferred, QSizePolicy::Minimum);  // never squeezed by the groups
   auto* layout = new QVBoxLayout(this);
   layout->setContentsMargins(0, 0, 0, 0);
   layout->setSpacing(4);
-  layout->addWidget(build_top());
-  layout->addWidget(build_change());
-  layout->addWidget(build_run());
-  layout->addWidget(build_spawn());
-  message_label_ = new QLabel(this);
-  message_label_->setWordWrap(true);  // a long answer wraps inside the dock, never behind a scroll bar
-  message_label_->setTextInteractionFlags(Qt::TextSelectableByMouse);
+  layout->addWidget(scroll_, 1);
   layout->addWidget(message_label_);
-  layout->addStretch();
   subscribe();
 }
 
@@ -100,6 +114,9 @@ QWidget* ControlWidget::build_top() {
   tops_->addItem(kLaunchTopName);
   status_ = new QLabel("No state received yet.", box);
   status_->setWordWrap(true);
+  // At most three lines (a fault's description is longer; its whole text is the tooltip): the fields stay in view.
+  status_->setMaximumHeight(3 * status_->fontMetrics().lineSpacing());
+  status_->setAlignment(Qt::AlignLeft | Qt::AlignTop);
   form->addRow("top", tops_);
   form->addRow("state", status_);
   connect(tops_, QOverload<int>::of(&QComboBox::activated), this, &ControlWidget::pick_top);
@@ -115,7 +132,7 @@ QWidget* ControlWidget::build_change() {
   form->addRow("inclination [rad]", inclination_);
   form->addRow("spin [rad/s]", spin_);
   law_ = new QComboBox(box);
-  law_->addItem("");  // keep the law in force
+  law_->addItem("in force");  // keep the law in force (show_state names it); the others: change to that law
   for (const std::string& law : law_names()) law_->addItem(QString::fromStdString(law));
   form->addRow("friction law", law_);
   form->addRow(build_friction_parameters(box));
@@ -133,9 +150,7 @@ QWidget* ControlWidget::build_change() {
 // One page per entry of the law box: its parameters side by side (empty: the value in force is kept).
 QWidget* ControlWidget::build_friction_parameters(QWidget* parent) {
   law_pages_ = new QStackedWidget(parent);
-  auto* keep = new QLabel("The law in force is kept.", law_pages_);
-  keep->setEnabled(false);
-  law_pages_->addWidget(keep);
+  law_pages_->addWidget(new QWidget(law_pages_));  // the law in force is kept: no parameters (the page is hidden)
   for (const std::string& law : law_names()) {
     auto* page = new QWidget(law_pages_);
     auto* row = new QHBoxLayout(page);
@@ -247,14 +262,17 @@ void ControlWidget::show_message(const std::string& text) {
   message_label_->setText(QString::fromStdString(text));
 }
 
-void ControlWidget::show_law(int index) { law_pages_->setCurrentIndex(index); }
+void ControlWidget::show_law(int index) {
+  law_pages_->setCurrentIndex(index);
+  law_pages_->setVisible(index > 0);  // the law in force kept: no row of parameters
+}
 
 // Only what the user typed is sent (the other fields show the top's values); what was sent follows the top again.
 void ControlWidget::apply() {
   PanelFields f;
   if (inclination_follow_.edited()) f.inclination = text_of(inclination_);
   if (spin_follow_.edited()) f.spin = text_of(spin_);
-  f.friction_law = law_->currentText().toStdString();
+  f.friction_law = law_->currentIndex() > 0 ? law_->currentText().toStdString() : "";  // 0: keep the law in force
   for (const std::string& p : law_parameters(f.friction_law)) f.friction[p] = text_of(parameters_[p]);
   for (const auto& [name, field] : contact_) f.contact[name] = text_of(field);
   top_sim::TopCommand c;
@@ -356,6 +374,9 @@ void ControlWidget::show_state(const top_sim::TopState& s) {
   paused_ = s.paused;
   pause_->setText(paused_ ? "Resume" : "Pause");
   status_->setText(QString::fromStdString(status_line(s)));
+  status_->setToolTip(status_->text());
+  const QString in_force = QString::fromStdString(s.friction_law.empty() ? "in force" : "in force: " + s.friction_law);
+  if (law_->itemText(0) != in_force) law_->setItemText(0, in_force);
   const auto follow = [](QLineEdit* field, const FollowedField& f, double value) {
     const std::optional<std::string> text = f.follow(value, field->hasFocus());
     if (text && field->text().toStdString() != *text) field->setText(QString::fromStdString(*text));
@@ -373,25 +394,35 @@ ControlPanel::ControlPanel(QWidget* parent) : rviz::Panel(parent) {
   row->addWidget(new QLabel("node", this));
   row->addWidget(node_);
   layout->addLayout(row);
-  widget_ = new ControlWidget(this);
-  // A dock shorter than the panel (a smaller window) scrolls rather than growing the window; never sideways: the
-  // fields take the dock's width and the texts wrap.
-  auto* scroll = new QScrollArea(this);
-  scroll->setWidget(widget_);
-  scroll->setWidgetResizable(true);
-  scroll->setFrameShape(QFrame::NoFrame);
-  scroll->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
-  layout->addWidget(scroll);
+  widget_ = new ControlWidget(this);  // it scrolls its groups in a dock shorter than they are
+  layout->addWidget(widget_, 1);
   connect(node_, &QLineEdit::editingFinished, this, [this] {
     widget_->set_node(node_->text().trimmed().toStdString());
     Q_EMIT configChanged();
   });
 }
 
+// rviz 1.14 goes on rendering into its main window for a few frames after closing it at shutdown (SIGINT, Ctrl-C,
+// File > Quit); under Mesa's llvmpipe the framebuffer is then 0 x 0 and the clear writes past its 0-byte tile
+// arrays, corrupting the heap: rviz died with -11 or -6 in most runs with this config and a node (issue 46). While
+// the window is hidden nothing is drawn, so rendering stops with it and starts again when it shows.
 void ControlPanel::onInitialize() {
   view_timer_ = new QTimer(this);
   connect(view_timer_, &QTimer::timeout, this, &ControlPanel::apply_view_hint);
   view_timer_->start(500);  // until the node has set its view (it may start after rviz)
+  frame_ = vis_manager_->getRenderPanel() ? vis_manager_->getRenderPanel()->window() : nullptr;
+  if (!frame_) return;
+  frame_->installEventFilter(this);
+  connect(vis_manager_, &QObject::destroyed, this, [this] {  // rviz deletes its manager before the panels
+    frame_->removeEventFilter(this);
+    frame_ = nullptr;
+  });
+}
+
+bool ControlPanel::eventFilter(QObject* watched, QEvent* event) {
+  if (frame_ && watched == frame_ && event->type() == QEvent::Hide) vis_manager_->stopUpdate();
+  if (frame_ && watched == frame_ && event->type() == QEvent::Show) vis_manager_->startUpdate();
+  return rviz::Panel::eventFilter(watched, event);
 }
 
 void ControlPanel::apply_view_hint() {

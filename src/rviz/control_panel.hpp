@@ -17,6 +17,7 @@ class QComboBox;
 class QLabel;
 class QLineEdit;
 class QPushButton;
+class QScrollArea;
 class QStackedWidget;
 class QTimer;
 
@@ -43,6 +44,10 @@ class ControlWidget : public QWidget {
   QLineEdit* real_time_factor_field() const { return rtf_; }
   QLineEdit* spawn_name_field() const { return spawn_name_; }
   QLineEdit* spawn_file_field() const { return spawn_file_; }
+  QScrollArea* groups_area() const { return scroll_; }  // the groups of fields (they scroll in a short dock)
+  QLabel* answer_label() const { return message_label_; }  // the last answer, below the groups, always in view
+
+  void show_message(const std::string& text);  // the answer line
 
  public Q_SLOTS:
   void apply();          // inclination, spin, friction law, contact and air -> the picked top's ~command
@@ -58,7 +63,6 @@ class ControlWidget : public QWidget {
   void on_states(const top_sim::TopStateArray::ConstPtr& states);
   void show_state(const top_sim::TopState& state);  // the picked top's: status line and followed fields
   void subscribe();
-  void show_message(const std::string& text);
   QLineEdit* followed_field(FollowedField& follow, const char* placeholder, QWidget* parent);
   QWidget* build_top();
   QWidget* build_change();
@@ -84,6 +88,7 @@ class ControlWidget : public QWidget {
   FollowedField inclination_follow_, spin_follow_{1}, rtf_follow_;
   QPushButton* pause_ = nullptr;
   QLabel *status_ = nullptr, *message_label_ = nullptr;
+  QScrollArea* scroll_ = nullptr;
 };
 
 class ControlPanel : public rviz::Panel {
@@ -94,6 +99,7 @@ class ControlPanel : public rviz::Panel {
   void onInitialize() override;
   void load(const rviz::Config& config) override;
   void save(rviz::Config config) const override;
+  bool eventFilter(QObject* watched, QEvent* event) override;  // rviz's window hidden: no rendering (onInitialize)
 
  private:
   // Turns rviz's camera to the node's scene's view hint (~view/camera, ~view/distance), once, when the node is up.
@@ -102,6 +108,7 @@ class ControlPanel : public rviz::Panel {
   ControlWidget* widget_;
   QLineEdit* node_;
   QTimer* view_timer_ = nullptr;
+  QWidget* frame_ = nullptr;  // rviz's main window
 };
 
 }  // namespace top_sim_rviz

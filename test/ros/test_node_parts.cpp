@@ -25,6 +25,7 @@
 #include "top_set.hpp"
 #include "topic_opener.hpp"
 #include "marker_stream.hpp"
+#include "markers.hpp"
 #include "trail.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
@@ -199,6 +200,21 @@ TEST(Trail, KeepsAPointOnlyWhenTheContactPointMovedTheResolution) {
   const auto points = trail_points(trail);
   ASSERT_EQ(points.size(), 4u);
   for (std::size_t k = 0; k < 4; ++k) EXPECT_NEAR(points[k].position.x(), 3e-4 * k, 1e-15);
+}
+
+// The trail's head moves between the contact frame (a fast top) and the plane frame; it is frame-locked in both, since
+// rviz 1.14 aborts (SIGTRAP) when a marker it got frame-locked comes again with the same (ns, id, type) unlocked.
+TEST(Trail, HeadIsFrameLockedInTheContactAndThePlaneFrame) {
+  top_sim_ros::Trail trail;
+  for (int i = 0; i < 5; ++i) trail.add(Eigen::Vector3d(1e-3 * i, 0.0, 0.0), ros::Time(i), 2.5e-4, 100);
+  const top_sim_ros::Frames frames;
+  for (const bool attached : {true, false}) {
+    const visualization_msgs::Marker m =
+        top_sim_ros::trail_head_marker(trail, Eigen::Vector3d(5e-3, 0.0, 0.0), ros::Time(5), frames, attached);
+    EXPECT_EQ(m.header.frame_id, attached ? frames.contact : frames.plane);
+    EXPECT_EQ(m.action, visualization_msgs::Marker::ADD);
+    EXPECT_TRUE(m.frame_locked) << (attached ? "contact" : "plane") << " frame";
+  }
 }
 
 // Chunks close at kChunkPoints points and join up: each starts at its predecessor's last point, ids increase, and a

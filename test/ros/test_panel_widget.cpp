@@ -7,8 +7,11 @@
 #include <QComboBox>
 #include <QFont>
 #include <QFontMetrics>
+#include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QtTest/QTest>
 #include <functional>
 #include <iostream>
@@ -66,27 +69,52 @@ std::vector<std::string> tops() {
 
 }  // namespace
 
-// The left dock of rviz/top_sim.rviz in its 1280 x 800 window (scripts/rviz_layout.py): 340 x 648 px, of which the
-// panel's title bar, the dock's tab bar, the node field and the margins leave this much to the widget. Measured
-// with rviz's font under X (Qt's default there, Sans Serif 9 pt; main() sets it for the offscreen platform).
-constexpr int kDockWidth = 330, kDockHeight = 560;
+// The left dock of rviz/top_sim.rviz in its 1280 x 800 window (scripts/rviz_layout.py, no Time panel): 342 x 709
+// px, of which the panel's title bar, the dock's tab bar, the node field and the margins leave the widget about
+// 330 x 625 px (docs/img/rviz_panel.png: y = 116 to 741). Measured with rviz's font under X (Qt's default there,
+// Sans Serif 9 pt; main() sets it for the offscreen platform).
+constexpr int kDockWidth = 330, kDockHeight = 620;
 
-TEST(PanelWidget, FitsTheDockWithEveryFieldReadable) {
+// The longest answer the panel gives to a command: two lines at the dock's width.
+constexpr const char* kLongAnswer =
+    "Sent to top 'top': inclination 0.2 rad, spin 150 rad/s and friction law coulomb with mu 0.35.";
+
+// The answer wholly in view at the widget's bottom, below the groups of fields.
+void expect_answer_in_view(const top_sim_rviz::ControlWidget& w) {
+  const QLabel* answer = w.answer_label();
+  EXPECT_TRUE(answer->isVisible());
+  EXPECT_GE(answer->geometry().top(), w.groups_area()->geometry().bottom()) << "the answer is below the fields";
+  EXPECT_LE(answer->geometry().bottom(), w.height() - 1) << "the answer is cut off at the dock's bottom";
+  EXPECT_GE(answer->height(), answer->heightForWidth(answer->width())) << "the answer's lines are clipped";
+}
+
+TEST(PanelWidget, FitsTheDockWithEveryFieldReadableAndTheAnswerInView) {
   top_sim_rviz::ControlWidget w;
   w.resize(kDockWidth, kDockHeight);
+  w.show_message(kLongAnswer);
   w.show();
   QApplication::processEvents();
   EXPECT_LE(w.minimumSizeHint().width(), kDockWidth) << "would scroll sideways";
   // At the dock's width (wrapped texts are taller there than at the widget's preferred width).
-  const int height = w.hasHeightForWidth() ? w.heightForWidth(kDockWidth) : w.sizeHint().height();
-  EXPECT_LE(height, kDockHeight) << "inclination, spin and Apply would need scrolling";
+  const QWidget* groups = w.groups_area()->widget();
+  const int width = w.groups_area()->viewport()->width();
+  const int needed = groups->hasHeightForWidth() ? groups->heightForWidth(width) : groups->sizeHint().height();
+  const int shown = w.groups_area()->viewport()->height();
+  EXPECT_LE(needed, shown) << "the fields would need scrolling";
+  EXPECT_EQ(w.groups_area()->verticalScrollBar()->maximum(), 0) << "the fields would need scrolling";
+  expect_answer_in_view(w);
   const int digits = QFontMetrics(w.font()).horizontalAdvance("-1234.56");
-  std::cout << "panel: " << height << " px high at " << kDockWidth << " px, minimum width "
-            << w.minimumSizeHint().width() << " px; '-1234.56' is " << digits << " px wide\n";
+  std::cout << "panel: fields " << needed << " px high of " << shown << " px at " << width << " px, answer "
+            << w.answer_label()->height() << " px, minimum width " << w.minimumSizeHint().width()
+            << " px; '-1234.56' is " << digits << " px wide\n";
   for (QLineEdit* field : w.findChildren<QLineEdit*>()) {
     if (!field->isVisible()) continue;
     EXPECT_GE(field->width(), digits) << field->placeholderText().toStdString() << ": too narrow to read";
   }
+  w.resize(kDockWidth, kDockHeight / 2);  // a smaller window: the fields scroll, the answer stays in view
+  QApplication::processEvents();
+  EXPECT_GT(w.groups_area()->verticalScrollBar()->maximum(), 0);
+  expect_answer_in_view(w);
 }
 
 TEST(PanelWidget, ButtonsReachTheNodeAndFieldsFollowTheTop) {
@@ -120,14 +148,17 @@ TEST(PanelWidget, ButtonsReachTheNodeAndFieldsFollowTheTop) {
   EXPECT_EQ(w.message(), "Nothing was sent: inclination = 'abc': must be a number.");
   type(w.inclination_field(), "");  // cleared: the field follows the top again, nothing of it is sent
   EXPECT_TRUE(wait_for([&] { return text(w.inclination_field()) == "0.2"; })) << text(w.inclination_field());
+  EXPECT_EQ(w.law_field()->itemText(0).toStdString(), "in force: paper");  // the default scene's law (pmma)
   w.law_field()->setCurrentText("coulomb");
   w.parameter_field("mu")->setText("0.35");
   click(w, "Apply to the picked top");
-  EXPECT_TRUE(wait_for([] { return std::abs(g_state.mu - 0.35) < 1e-12 && g_state.alpha == 0.2; }))
-      << "mu " << g_state.mu << "; panel: " << w.message();
+  EXPECT_TRUE(wait_for([] { return std::abs(g_state.mu - 0.35) < 1e-12 && g_state.alpha == 0.2 && g_state.friction_law == "coulomb"; }))
+      << "mu " << g_state.mu << ", law " << g_state.friction_law << "; panel: " << w.message();
   EXPECT_EQ(w.message(), "Sent to top 'top': friction law coulomb with mu 0.35.");
+  EXPECT_TRUE(wait_for([&] { return w.law_field()->itemText(0) == "in force: coulomb"; }))  // from TopState
+      << w.law_field()->itemText(0).toStdString();
 
-  w.law_field()->setCurrentText("");  // keep the law: only the patch is sent
+  w.law_field()->setCurrentIndex(0);  // keep the law in force: only the patch is sent
   const double a = 2e-4;
   for (const double radius : {a, 0.0}) {  // a patch, then the point contact again
     w.contact_field("patch_radius")->setText(QString::number(radius));
