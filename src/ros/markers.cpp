@@ -249,11 +249,12 @@ Rgb body_colour(const top_sim::Snapshot& s, ColorBy by) {
     case Regime::inverted: return {0.45f, 0.35f, 0.95f};
     case Regime::tumbling: return {0.6f, 0.5f, 0.3f};
     case Regime::rolling: return {0.25f, 0.75f, 0.75f};
-    case Regime::on_crown:
-    case Regime::on_stem: return {0.55f, 0.45f, 0.9f};
-    case Regime::at_rest:
-    case Regime::lying_flat:
-    case Regime::fallen: return {0.6f, 0.62f, 0.66f};  // the story has ended: grey, as a still object
+    case Regime::on_crown: return {0.55f, 0.45f, 0.9f};
+    case Regime::on_stem: return {0.75f, 0.4f, 0.85f};
+    // The story has ended: greys, a still object (each its own, for a reader that tells them by colour).
+    case Regime::at_rest: return {0.6f, 0.62f, 0.66f};
+    case Regime::lying_flat: return {0.5f, 0.54f, 0.6f};
+    case Regime::fallen: return {0.7f, 0.66f, 0.6f};
     case Regime::nutating: break;
   }
   return {1.0f, 0.6f, 0.2f};

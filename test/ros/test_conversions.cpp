@@ -724,10 +724,10 @@ TEST(TopStateMsg, SnapshotRoundTripIsExact) {
 
 TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
   top_sim::TopState m;
-  m.regime = 9;
+  m.regime = 15;
   std::string error;
   top_sim_ros::to_snapshot(m, error);
-  EXPECT_EQ(error, "regime = 9: must be a code in 0..8");
+  EXPECT_EQ(error, "regime = 15: must be a code in 0..14");
   m.regime = top_sim::TopState::SLEEPING;
   m.contact_mode = 3;
   top_sim_ros::to_snapshot(m, error);
@@ -745,7 +745,7 @@ TEST(TopStateMsg, BadCodesAndNonFiniteNumbersAreErrors) {
   EXPECT_EQ(error, "");
   m.end_state = "lying_down";
   top_sim_ros::to_snapshot(m, error);
-  EXPECT_EQ(error, "end_state = 'lying_down': must be empty or one of lying_flat, at_rest");
+  EXPECT_EQ(error, "end_state = 'lying_down': must be empty or one of lying_flat, at_rest, fallen");
   m.end_state = "";
   EXPECT_EQ(top_sim_ros::to_snapshot(m, error).end_state, top_sim::EndState::none);
   EXPECT_EQ(error, "");
@@ -961,7 +961,7 @@ TEST(ShapeMarkers, LabelShowsTheEndState) {
 namespace {
 
 // The interactive controls rest beside the body, out of its way (issue 46): Euler's disk reaches twice its shapes'
-// reach from its contact point, and the controls rest beyond that; an ordinary top keeps the fixed offset.
+// reach from its contact point, and the controls rest beyond that; an ordinary top's stay where they were (5 cm).
 TEST(ControlLayout, ControlsRestBesideTheBody) {
   const top_sim::Scene disk = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/euler_disk.yaml");
   const double reach = top_sim_ros::reach_from_contact(disk.model.top, disk.model.shapes);
@@ -969,8 +969,8 @@ TEST(ControlLayout, ControlsRestBesideTheBody) {
   EXPECT_GE(top_sim_ros::control_layout::offset_x(reach) - 0.5 * top_sim_ros::control_layout::kScale, reach);
   const top_sim::Scene top = top_sim::load_scene(std::string(TOP_SIM_TEST_CONFIG_DIR) + "/scenes/default.yaml");
   const double top_reach = top_sim_ros::reach_from_contact(top.model.top, top.model.shapes);
-  EXPECT_LT(top_reach, top_sim_ros::control_layout::kOffsetX);
-  EXPECT_EQ(top_sim_ros::control_layout::offset_x(top_reach), top_sim_ros::control_layout::kOffsetX);
+  EXPECT_GE(top_sim_ros::control_layout::offset_x(top_reach) - 0.5 * top_sim_ros::control_layout::kScale, top_reach);
+  EXPECT_NEAR(top_sim_ros::control_layout::offset_x(top_reach), top_sim_ros::control_layout::kOffsetX, 0.005);
 }
 
 }  // namespace
