@@ -121,7 +121,8 @@ void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
   top.output.trail.add(pose.contact_point, stamp, params_.path_resolution,
                        static_cast<std::size_t>(params_.path_length));
   add_transforms(top, pose, stamp);
-  if (top.launch_top()) publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused);
+  if (top.launch_top())
+    publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused || top.paused());
   if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
   top_sim::TopState& msg = flags.array ? next_state(top) : own_;
   fill_state(top, s, stamp, flags, msg);
@@ -139,7 +140,7 @@ void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros
   to_msg(s, stamp, top.frames().plane, msg);
   msg.real_time_factor = top.pacer().achieved_factor();
   msg.requested_real_time_factor = flags.requested_factor;
-  msg.paused = flags.paused;
+  msg.paused = flags.paused || top.paused();  // the node, or this top alone (TopCommand)
 }
 
 // The next entry of the array, reused from the last tick when there is one (its strings keep their storage); its
