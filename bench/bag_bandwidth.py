@@ -45,6 +45,7 @@ def spawn_copies(n):
     """n copies of the node's scene, c0 ... c<n-1>, in one ~spawn call."""
     import rospy
     from top_sim.srv import Spawn, SpawnRequest
+    rospy.init_node('bag_bandwidth', anonymous=True, disable_signals=True)
     rospy.wait_for_service('/top_sim/spawn', timeout=60)
     r = rospy.ServiceProxy('/top_sim/spawn', Spawn)(SpawnRequest(name='c', copies=n))
     if not r.success:
