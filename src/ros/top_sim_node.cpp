@@ -372,7 +372,9 @@ class TopSimNode {
     if (res.success)
       ROS_INFO("top_sim_node: %s", res.message.c_str());
     else
-      ROS_WARN("top_sim_node: spawn '%s' refused: %s", req.name.c_str(), res.message.c_str());
+      ROS_WARN("top_sim_node: spawn '%s' refused: %s",
+               req.name.empty() && !req.names.empty() ? req.names.front().c_str() : req.name.c_str(),
+               res.message.c_str());
     return true;
   }
 
