@@ -419,17 +419,28 @@ def parse_args():
     return p.parse_args()
 
 
+def start_session(tool, log_dir):
+    """The log directory, a private rosmaster and this process's rospy node: (environment, master process); stop
+    the master with nh.stop_group."""
+    os.makedirs(log_dir, exist_ok=True)
+    env = nh.ros_environment(tool)
+    master = nh.start_master(env, tool)
+    try:
+        import rospy
+        rospy.init_node('top_sim_%s_bench' % tool, anonymous=True, disable_signals=True)
+    except BaseException:
+        nh.stop_group(master)
+        raise
+    return env, master
+
+
 def main():
     args = parse_args()
     if args.per_top_topics is not None:
         args.per_top_topics = args.per_top_topics == 'true'
-    os.makedirs(args.log_dir, exist_ok=True)
-    env = nh.ros_environment('node_scale')
-    master = nh.start_master(env, 'node_scale')
+    env, master = start_session('node_scale', args.log_dir)
     results = []
     try:
-        import rospy
-        rospy.init_node('top_sim_scale_bench', anonymous=True, disable_signals=True)
         nodes = [tuple(n.split('=', 1)) if '=' in n else (n, n) for n in args.node] or [('package', '')]
         for run in range(args.repeat):
             for c in args.configs.split(','):

@@ -68,13 +68,9 @@ def main():
     p.add_argument('--json', default='')
     p.add_argument('--log-dir', default='/tmp/top_sim_spawn')
     args = p.parse_args()
-    os.makedirs(args.log_dir, exist_ok=True)
-    env = nh.ros_environment('spawn_batch')
-    master = nh.start_master(env, 'spawn_batch')
+    env, master = ns.start_session('spawn_batch', args.log_dir)
     results = []
     try:
-        import rospy
-        rospy.init_node('top_sim_spawn_bench', anonymous=True, disable_signals=True)
         for run in range(args.repeat):
             for case in args.cases.split(','):
                 r = one_case(args, env, case, run)

@@ -184,19 +184,22 @@ TEST(TopSet, ACostlyTopDoesNotSlowTheOthers) {
   EXPECT_LT(worst_tick, budget + 0.05) << "worst tick " << worst_tick << " s";
 }
 
+// The node's parameters under /top_sim from a tree holding only `key` = `v` (key "": publish_rate alone).
+top_sim_ros::NodeParameters parameters_with(const std::string& key, XmlRpc::XmlRpcValue v = XmlRpc::XmlRpcValue()) {
+  XmlRpc::XmlRpcValue tree;
+  if (key.empty())
+    tree["publish_rate"] = 100;
+  else
+    tree[key] = v;
+  ParamReader p(tree, "/top_sim");
+  return top_sim_ros::read_node_parameters(p);
+}
+
 // ~per_top_topics: a strict bool; unset, on while the node holds at most 100 tops (issue 49).
 TEST(NodeParameters, PerTopTopicsIsABoolOrTheRuleByCount) {
   using top_sim_ros::PerTopTopics;
-  auto read = [](XmlRpc::XmlRpcValue v) {
-    XmlRpc::XmlRpcValue tree;
-    tree["per_top_topics"] = v;
-    ParamReader p(tree, "/top_sim");
-    return top_sim_ros::read_node_parameters(p).per_top_topics;
-  };
-  XmlRpc::XmlRpcValue none;
-  none["publish_rate"] = 100;
-  ParamReader p(none, "/top_sim");
-  EXPECT_EQ(top_sim_ros::read_node_parameters(p).per_top_topics, PerTopTopics::by_count);
+  auto read = [](XmlRpc::XmlRpcValue v) { return parameters_with("per_top_topics", v).per_top_topics; };
+  EXPECT_EQ(parameters_with("").per_top_topics, PerTopTopics::by_count);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(true)), PerTopTopics::on);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(false)), PerTopTopics::off);
   for (XmlRpc::XmlRpcValue bad : {XmlRpc::XmlRpcValue(std::string("maybe")), XmlRpc::XmlRpcValue(1)}) {
@@ -513,16 +516,8 @@ TEST(MarkerStream, WhatRvizHoldsIsTheTrail) {
 // -1 (not pinned) or a CPU online; anything else names the parameter, its value and the range.
 TEST(NodeParameters, CpuAffinityIsMinusOneOrACpuOnline) {
   const int cpus = top_sim_ros::online_cpus();
-  auto read = [](XmlRpc::XmlRpcValue v) {
-    XmlRpc::XmlRpcValue tree;
-    tree["cpu_affinity"] = v;
-    ParamReader p(tree, "/top_sim");
-    return top_sim_ros::read_node_parameters(p).cpu_affinity;
-  };
-  XmlRpc::XmlRpcValue none;
-  none["publish_rate"] = 100;
-  ParamReader p(none, "/top_sim");
-  EXPECT_EQ(top_sim_ros::read_node_parameters(p).cpu_affinity, -1);
+  auto read = [](XmlRpc::XmlRpcValue v) { return parameters_with("cpu_affinity", v).cpu_affinity; };
+  EXPECT_EQ(parameters_with("").cpu_affinity, -1);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(cpus - 1)), cpus - 1);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(0)), 0);
   const std::string range = "[0, " + std::to_string(cpus - 1) + "]";
