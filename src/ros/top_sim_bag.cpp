@@ -35,7 +35,7 @@ const char* kUsage =
     "                   [--from T0] [--to T1]\n"
     "  Reads every top_sim/TopState topic of BAG: /NS/top_state is the top NS (a node's launch-time top),\n"
     "  /NS/NAME/top_state the top NAME; and every top in a top_sim/TopStateArray topic (/NS/top_states) that\n"
-    "  has no TopState topic of its own in BAG (the array's first and last messages name them).\n"
+    "  has no TopState topic of its own in BAG (the array's first and last messages name them; --top finds any).\n"
     "  With several tops each output is written per top, FILE's name + _NAME.\n"
     "  --top NAME      only this top (its name or its topic)\n"
     "  --csv FILE      top_sim_run's CSV columns, t = TopState.sim_time\n"
@@ -177,7 +177,7 @@ void add_array_tops(rosbag::Bag& bag, const std::vector<const rosbag::Connection
 
 // The bag's tops: its top_sim/TopState topics, in topic order, then the tops only its TopStateArray topics carry;
 // throws BadInput when there is none.
-std::vector<Top> tops_in(rosbag::Bag& bag) {
+std::vector<Top> tops_in(rosbag::Bag& bag, std::vector<std::string>& array_topics_out) {
   rosbag::View view(bag);
   std::map<std::string, std::string> topics, others;  // topic -> short name; topic -> type
   std::map<std::string, int> uses;
@@ -195,6 +195,7 @@ std::vector<Top> tops_in(rosbag::Bag& bag) {
   std::vector<Top> tops;
   for (const auto& [topic, name] : topics) tops.push_back({uses[name] > 1 ? qualified_name(topic) : name, topic, ""});
   add_array_tops(bag, arrays, uses, tops);
+  array_topics_out.assign(array_topics.begin(), array_topics.end());
   if (tops.empty()) {
     std::string list;
     for (const auto& [topic, type] : others) list += (list.empty() ? "" : ", ") + topic + " (" + type + ")";
@@ -204,15 +205,32 @@ std::vector<Top> tops_in(rosbag::Bag& bag) {
   return tops;
 }
 
-// The tops to read: all, or the one --top names (by name or topic); throws BadInput for an unknown name.
-std::vector<Top> select(const std::vector<Top>& tops, const std::string& wanted, const std::string& bag) {
+// The first array topic any of whose messages names `name` (a top spawned and killed between the first and last
+// messages, which tops_in does not list), or "".
+std::string array_with(rosbag::Bag& bag, const std::vector<std::string>& arrays, const std::string& name) {
+  for (const std::string& topic : arrays) {
+    rosbag::View view(bag, rosbag::TopicQuery(topic));
+    for (const rosbag::MessageInstance& m : view) {
+      const top_sim::TopStateArray::ConstPtr a = m.instantiate<top_sim::TopStateArray>();
+      if (a && std::find(a->names.begin(), a->names.end(), name) != a->names.end()) return topic;
+    }
+  }
+  return "";
+}
+
+// The tops to read: all, or the one --top names (by name or topic; or a name in an array topic's messages); throws
+// BadInput for an unknown name.
+std::vector<Top> select(rosbag::Bag& bag, const std::vector<Top>& tops, const std::vector<std::string>& arrays,
+                        const std::string& wanted) {
   if (wanted.empty()) return tops;
   std::string known;
   for (const Top& t : tops) {
     if (t.name == wanted || (t.entry.empty() && t.topic == wanted)) return {t};
     known += (known.empty() ? "" : ", ") + t.name + " (" + t.topic + ")";
   }
-  throw BadInput{"--top = '" + wanted + "': no such top in '" + bag + "'; its tops: " + known};
+  if (const std::string topic = array_with(bag, arrays, wanted); !topic.empty()) return {{wanted, topic, wanted}};
+  const std::string bag_name = bag.getFileName();
+  throw BadInput{"--top = '" + wanted + "': no such top in '" + bag_name + "'; its tops: " + known};
 }
 
 // FILE for one top; FILE's stem + "_" + NAME + its extension when there are several ("run.csv" -> "run_NAME.csv").
@@ -396,7 +414,9 @@ int run(const Arguments& args) {
   bag.open(args.bag, rosbag::bagmode::Read);
   std::optional<top_sim::Scene> scene;
   if (!args.scene.empty()) scene = load(args.scene);
-  const std::vector<Top> tops = select(tops_in(bag), args.top, args.bag);
+  std::vector<std::string> arrays;
+  const std::vector<Top> listed = tops_in(bag, arrays);
+  const std::vector<Top> tops = select(bag, listed, arrays, args.top);
   const bool several = tops.size() > 1;
   if (several && args.json == "-")
     throw BadInput{"--json = '-': standard output takes one top; the bag has " + std::to_string(tops.size()) +

@@ -365,7 +365,7 @@ class BagTool(unittest.TestCase):
         for args, status, words in (
                 ([self.out('missing.bag')], 2, 'no such file'),
                 ([self.out('text.bag')], 2, 'text.bag'),
-                ([chatter], 2, 'no top_sim/TopState topic; the bag has: /chatter (std_msgs/String)'),
+                ([chatter], 2, 'no top_sim/TopState or TopStateArray topic; the bag has: /chatter (std_msgs/String)'),
                 ([two, '--top', 'nope'], 2, "--top = 'nope': no such top"),
                 ([two, '--json', '-'], 2, 'standard output takes one top'),
                 ([two, '--from', '5', '--to', '6'], 2, 'no TopState with sim_time in [5, 6]'),
