@@ -149,28 +149,21 @@ class Soak(object):
 
     def run(self):
         a = self.args
-        files = [self.files[i % len(self.files)] for i in range(a.tops - 1)]
-        self.add(files)
-        t0 = time.monotonic()
-        next_act, next_sample, next_alive, end = t0, t0, t0, t0 + a.duration
+        self.add([self.files[i % len(self.files)] for i in range(a.tops - 1)])
+        self.t0 = t0 = time.monotonic()
+        # (when next, task returning the delay to its next run): actions at random, samples and checks in step
+        tasks = [[t0, lambda: self.act() or self.rng.uniform(0.5, 1.5) / a.rate],
+                 [t0, lambda: self.sample(t0) or a.sample_period],
+                 [t0, lambda: self.check_alive(t0) or a.alive_period]]
         self.exited_at = None
-        while time.monotonic() < end:
+        while time.monotonic() < t0 + a.duration and self.exited_at is None:
+            for task in tasks:
+                if time.monotonic() >= task[0]:
+                    task[0] = time.monotonic() + task[1]()
             if self.proc.poll() is not None:
                 self.exited_at = time.monotonic() - t0
-                break
-            now = time.monotonic()
-            if now >= next_act:
-                self.act()
-                next_act = now + self.rng.uniform(0.5, 1.5) / a.rate
-            if now >= next_sample:
-                self.sample(t0)
-                next_sample += a.sample_period
-            if now >= next_alive:
-                self.check_alive(t0)
-                next_alive += a.alive_period
-            time.sleep(max(0.0, min(next_act, next_sample, next_alive, end) - time.monotonic()))
+            time.sleep(max(0.0, min([t[0] for t in tasks] + [t0 + a.duration]) - time.monotonic()))
         self.wall = time.monotonic() - t0
-        self.t0 = t0
 
 
 def figures(soak):
@@ -225,11 +218,10 @@ def main():
             nh.stop_group(proc)
     finally:
         nh.stop_group(master)
-    r = figures(soak)
+    result = figures(soak)
     if args.json:
-        with open(args.json, 'w') as f:
-            json.dump(r, f, indent=1)
-    print(json.dumps({k: v for k, v in r.items() if k != 'samples'}), flush=True)
+        json.dump(result, open(args.json, 'w'), indent=1)
+    print(json.dumps({k: v for k, v in result.items() if k != 'samples'}), flush=True)
 
 
 if __name__ == '__main__':
