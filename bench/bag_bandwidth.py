@@ -6,7 +6,11 @@ launch/top_sim.launch (no rviz) against a private rosmaster, runs --age seconds 
 `rosbag record -a` records --seconds seconds. Reported: the bag's size per second of recording, and per topic the
 message count, rate and bytes per second (messages' serialised sizes, read back from the bag).
 
-  bench/bag_bandwidth.py [--age 60] [--seconds 20] [--json FILE] [-- LAUNCH_ARGS...]
+  bench/bag_bandwidth.py [--age 60] [--seconds 20] [--tops N] [--topics T1,T2] [--json FILE] [-- LAUNCH_ARGS...]
+
+--tops N: N tops in the node, the launch-time top and N - 1 copies of its scene spawned in one ~spawn call (issue
+49); --topics: record only these topics (`rosbag record T1 T2`) instead of -a, e.g. /top_sim/top_states, what a
+user of many tops records.
 
 e.g. `bench/bag_bandwidth.py --age 600 -- trail_seconds:=600` for ten minutes of trail. Writes a JSON result
 (--json) and prints a table. Exit status 0 whatever the figures (a benchmark reports, it does not assert), non-zero
@@ -37,10 +41,24 @@ def per_topic(bag_path):
     return out
 
 
+def spawn_copies(n):
+    """n copies of the node's scene, c0 ... c<n-1>, in one ~spawn call."""
+    import rospy
+    from top_sim.srv import Spawn, SpawnRequest
+    rospy.init_node('bag_bandwidth', anonymous=True, disable_signals=True)
+    rospy.wait_for_service('/top_sim/spawn', timeout=60)
+    r = rospy.ServiceProxy('/top_sim/spawn', Spawn)(SpawnRequest(name='c', copies=n))
+    if not r.success:
+        sys.exit('bag_bandwidth: spawn refused: ' + r.message)
+    print(r.message)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split('\n')[0])
     ap.add_argument('--age', type=float, default=60.0, help='seconds the node runs before recording')
     ap.add_argument('--seconds', type=float, default=20.0, help='seconds recorded')
+    ap.add_argument('--tops', type=int, default=1, help='tops in the node (N - 1 spawned as copies)')
+    ap.add_argument('--topics', default='', help='comma-separated topics to record (default: -a)')
     ap.add_argument('--json', help='write the result here')
     ap.add_argument('launch_args', nargs='*', help='extra name:=value arguments for top_sim.launch')
     args = ap.parse_args()
@@ -52,8 +70,11 @@ def main():
     launch = None
     try:
         launch, _ = launch_node(env, args.launch_args, '/top_sim', os.path.join(work, 'node.log'))
+        if args.tops > 1:
+            spawn_copies(args.tops - 1)
         time.sleep(args.age)
-        rec = subprocess.Popen(['rosbag', 'record', '-a', '-O', bag, '--duration=%g' % args.seconds],
+        what = args.topics.split(',') if args.topics else ['-a']
+        rec = subprocess.Popen(['rosbag', 'record'] + what + ['-O', bag, '--duration=%g' % args.seconds],
                                env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
                                start_new_session=True)
         try:
@@ -69,7 +90,8 @@ def main():
         sys.exit('bag_bandwidth: rosbag wrote no bag (%s)' % work)
     topics = per_topic(bag)
     size = os.path.getsize(bag)
-    result = {'age_s': args.age, 'recorded_s': args.seconds, 'launch_args': args.launch_args,
+    result = {'age_s': args.age, 'recorded_s': args.seconds, 'launch_args': args.launch_args, 'tops': args.tops,
+              'recorded_topics': args.topics or '-a',
               'bag_bytes': size, 'bag_bytes_per_s': size / args.seconds, 'topics': {}}
     print('age %g s, recorded %g s: bag %.1f KB/s' % (args.age, args.seconds, size / args.seconds / 1e3))
     print('| topic | messages | rate [Hz] | KB/s | bytes per message |')

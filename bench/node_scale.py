@@ -9,6 +9,11 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
     cost of a tick the node did make when it misses ticks),
   - the latency of a command to the LAST spawned top (its NAME/inclination until its NAME/top_state shows it),
   - from /diagnostics: tops falling behind, the launch-time top's achieved real-time factor,
+  - with --probe tops (issue 49): the latency of a command to the LAST top through ~tops/command, seen in
+    top_states (the array's raw bytes searched for the inclination sent, so the Python subscriber keeps up with
+    10,000 tops); ready_s, from starting the node to the first top_states showing such a command (sent every 0.2 s
+    from the start: the node answers ~tops/command); rate_s, from the start to the first wall second in which
+    top_states arrived at 95 % of the asked rate or more,
   - start-up: until ~list names every top (startup_s); until the tops' own topics are all advertised (topics_s:
     they may follow in the background, docs/ros.md "Many tops: start-up"); the time from which no top is behind
     up to the start of the window (caught_up_s). --settle S waits, before the warm-up, until no top has been
@@ -17,7 +22,8 @@ tops (the launch-time top plus N-1 from ~tops) against a private rosmaster; meas
     after it, then takes the CPU share again (cpu_share_after_topics).
 
   bench/node_scale.py [--configs 1:200,10:200,100:200,1000:50,1000:50:notf] [--seconds 20] [--repeat N]
-                      [--scene FILE] [--settle S] [--topics-last [--topics-timeout S]]
+                      [--scene FILE] [--settle S] [--topics-last [--topics-timeout S]] [--probe own|tops]
+                      [--per-top-topics true|false]
                       [--node LABEL=BIN ...] [--json FILE]
 
 A configuration is TOPS:RATE[:notf][:cpuN] (cpuN: the node pinned to CPU N by its ~cpu_affinity, all threads;
@@ -89,6 +95,66 @@ class Latency(object):
         self.pub.publish(self.Float64(alpha))
 
 
+class ArrayLatency(object):
+    """Command -> state latency of one top through ~tops/command, seen in top_states: each inclination sent is a
+    value no top has (0.11 or 0.12 rad plus k nanoradians), so its 8 bytes in a raw top_states message mean the
+    command acted; the message is not deserialized (10,000 tops are 4 MB a message)."""
+
+    def __init__(self, rospy, top_sim_msg, node, top):
+        import struct
+        self.pack = struct.Struct('<d').pack
+        self.lock = threading.Lock()
+        self.pending = None
+        self.samples, self.hits = [], []
+        self.top, self.k = top, 0
+        self.sub = rospy.Subscriber(node + '/top_states', rospy.AnyMsg, self.on_states, queue_size=100,
+                                    tcp_nodelay=True)
+        self.TopCommand = top_sim_msg.TopCommand
+        with warnings.catch_warnings():  # queue_size=None on purpose: publish() writes in this thread (exact send time)
+            warnings.simplefilter('ignore', SyntaxWarning)
+            self.pub = rospy.Publisher(node + '/tops/command', top_sim_msg.TopCommand, queue_size=None,
+                                       tcp_nodelay=True)
+
+    def on_states(self, m):
+        now = time.perf_counter()
+        with self.lock:
+            if self.pending and self.pending[0] in m._buff:
+                self.samples.append(now - self.pending[1])
+                self.hits.append(now)
+                self.pending = None
+
+    def send(self):
+        self.k += 1
+        alpha = 0.1 + 0.01 * (self.k % 2 + 1) + 1e-9 * self.k
+        with self.lock:
+            self.pending = (self.pack(alpha), time.perf_counter())
+        self.pub.publish(self.TopCommand(name=self.top, set_inclination=True, inclination=alpha))
+
+    def first_hit(self):
+        with self.lock:
+            return self.hits[0] if self.hits else None
+
+
+def first_full_second(times, t_start, rate):
+    """The start of the first wall second (sliding, from each arrival) with at least 95 % of `rate` arrivals."""
+    need = max(1, int(0.95 * rate))
+    for i in range(len(times) - need + 1):
+        if times[i + need - 1] - times[i] <= 1.0:
+            return times[i] - t_start
+    return None
+
+
+def wait_ready(probe, timeout):
+    """Sends a command every 0.2 s until top_states shows one; the wall time it did, or None."""
+    deadline = time.perf_counter() + timeout
+    while time.perf_counter() < deadline:
+        probe.send()
+        time.sleep(0.2)
+        if probe.first_hit() is not None:
+            return probe.first_hit()
+    return None
+
+
 class Diagnostics(object):
     """The node's last diagnostics, and the series (arrival time, tops behind, tops whose topics are pending)."""
 
@@ -144,13 +210,16 @@ class Diagnostics(object):
 PENDING = 'tops whose topics are not yet advertised'
 
 
-def set_parameters(env, tops, rate, tf, cpu=None, scene=''):
+def set_parameters(env, tops, rate, tf, cpu=None, scene='', per_top_topics=None):
     import rospy
     scene = os.path.abspath(scene) if scene else os.path.join(nh.REPO, 'config', 'scenes', 'default.yaml')
-    rospy.set_param(NODE, {
+    params = {
         'scene_file': scene, 'config_dir': os.path.join(nh.REPO, 'config'), 'publish_rate': float(rate),
         'publish_tf': tf, 'tops': {'t%04d' % i: '' for i in range(1, tops)},
-        'cpu_affinity': -1 if cpu is None else cpu})
+        'cpu_affinity': -1 if cpu is None else cpu}
+    if per_top_topics is not None:  # unset: the node's rule (builds before issue 49 do not know the key)
+        params['per_top_topics'] = per_top_topics
+    rospy.set_param(NODE, params)
 
 
 def node_command(env, node):
@@ -213,11 +282,20 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
     import top_sim.msg as top_sim_msg
     keep_off_cpu(pin_cpu)
     log_path = os.path.join(args.log_dir, 'scale_%s_%d_%g_%s.log' % (node[0].replace('/', '_'), tops, rate, 'tf' if tf else 'notf'))
-    set_parameters(env, tops, rate, tf, pin_cpu, args.scene)
+    set_parameters(env, tops, rate, tf, pin_cpu, args.scene, args.per_top_topics)
+    last_name = 't%04d' % (tops - 1) if tops > 1 else 'top'
+    early = {}  # --probe tops: subscribed before the node starts, so its first messages are seen
+    if args.probe == 'tops':
+        early['states'] = Arrivals(rospy, NODE + '/top_states')
+        early['probe'] = ArrayLatency(rospy, top_sim_msg, NODE, last_name)
     t_start = time.perf_counter()
     proc, pid = start_node(env, log_path, timeout=600, node=node[1])
-    subs = []
+    subs = [x.sub for x in early.values()] + ([early['probe'].pub] if early else [])
+    ready = None
     try:
+        if early:
+            t_ready = wait_ready(early['probe'], timeout=600)
+            ready = None if t_ready is None else t_ready - t_start
         wait_for_all_tops(rospy, tops, timeout=600)
         startup = time.perf_counter() - t_start
         diag = Diagnostics(rospy)
@@ -228,17 +306,24 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             t_topics = diag.wait(lambda behind, pending: pending == 0, timeout=args.settle_timeout)
             topics = None if t_topics is None else t_topics - t_start
         settled = diag.settled(args.settle, timeout=args.settle_timeout)
-        states = Arrivals(rospy, NODE + '/top_states')
+        states = early.get('states') or Arrivals(rospy, NODE + '/top_states')
         tfs = Arrivals(rospy, '/tf')
-        last = NODE + '/' + ('t%04d/' % (tops - 1) if tops > 1 else '')
-        latency = Latency(rospy, top_sim_msg, last)
-        subs = [states.sub, tfs.sub, latency.sub, latency.pub, diag.sub]  # unregistered before the next node
+        if early:
+            latency = early['probe']
+            subs += [tfs.sub, diag.sub]
+        else:
+            latency = Latency(rospy, top_sim_msg, NODE + '/' + ('t%04d/' % (tops - 1) if tops > 1 else ''))
+            subs = [states.sub, tfs.sub, latency.sub, latency.pub, diag.sub]  # unregistered before the next node
         time.sleep(args.warmup)
+        latency.samples = []  # the window's own
         t0, c0 = time.perf_counter(), nh.cpu_ticks(pid)
         load0 = nh.loadavg_1min()
         k = 0
         while time.perf_counter() < t0 + args.seconds:
-            latency.send(0.1 + 0.01 * (k % 2 + 1))  # alternates 0.11 / 0.12 rad: each one a change
+            if early:
+                latency.send()
+            else:
+                latency.send(0.1 + 0.01 * (k % 2 + 1))  # alternates 0.11 / 0.12 rad: each one a change
             k += 1
             time.sleep(0.5)
         t1, c1 = time.perf_counter(), nh.cpu_ticks(pid)
@@ -264,6 +349,9 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
             'tops': tops, 'rate_hz': rate, 'tf': tf, 'node': node[0] + ('' if pin_cpu is None else ' cpu%d' % pin_cpu),
             'run': index,
             'startup_s': round(startup, 2),
+            'probe': args.probe,
+            'ready_s': None if ready is None else round(ready, 2),
+            'rate_s': None if not early else rounded(first_full_second(list(states.times), t_start, rate)),
             'topics_s': None if topics is None else round(topics, 2),
             # up to the window: its command probe takes the last top out of the reduced model on purpose
             'caught_up_s': None if caught_up is None else round(caught_up, 2),
@@ -284,6 +372,10 @@ def measure(args, env, tops, rate, tf, index, node=('package', ''), pin_cpu=None
         for sub in subs:
             sub.unregister()
         nh.stop_group(proc)
+
+
+def rounded(v, digits=2):
+    return None if v is None else round(v, digits)
 
 
 def parse_config(text):
@@ -314,6 +406,11 @@ def parse_args():
                    help='measure the window once no top is behind, then wait for the tops\' own topics '
                         '(--topics-timeout) and measure the CPU share again')
     p.add_argument('--topics-timeout', type=float, default=900.0)
+    p.add_argument('--probe', choices=('own', 'tops'), default='own',
+                   help="the command probe: the last top's own NAME/inclination and NAME/top_state (own), or "
+                        "~tops/command and top_states (tops: also ready_s and rate_s; builds since issue 49)")
+    p.add_argument('--per-top-topics', choices=('true', 'false'), default=None,
+                   help="the node's ~per_top_topics (unset: the node's rule; builds since issue 49)")
     p.add_argument('--repeat', type=int, default=1)
     p.add_argument('--node', action='append', default=[],
                    help="LABEL=BIN: a top_sim_node build to run (BIN empty: the package's); repeatable")
@@ -322,15 +419,28 @@ def parse_args():
     return p.parse_args()
 
 
-def main():
-    args = parse_args()
-    os.makedirs(args.log_dir, exist_ok=True)
-    env = nh.ros_environment('node_scale')
-    master = nh.start_master(env, 'node_scale')
-    results = []
+def start_session(tool, log_dir):
+    """The log directory, a private rosmaster and this process's rospy node: (environment, master process); stop
+    the master with nh.stop_group."""
+    os.makedirs(log_dir, exist_ok=True)
+    env = nh.ros_environment(tool)
+    master = nh.start_master(env, tool)
     try:
         import rospy
-        rospy.init_node('top_sim_scale_bench', anonymous=True, disable_signals=True)
+        rospy.init_node('top_sim_%s_bench' % tool, anonymous=True, disable_signals=True)
+    except BaseException:
+        nh.stop_group(master)
+        raise
+    return env, master
+
+
+def main():
+    args = parse_args()
+    if args.per_top_topics is not None:
+        args.per_top_topics = args.per_top_topics == 'true'
+    env, master = start_session('node_scale', args.log_dir)
+    results = []
+    try:
         nodes = [tuple(n.split('=', 1)) if '=' in n else (n, n) for n in args.node] or [('package', '')]
         for run in range(args.repeat):
             for c in args.configs.split(','):
@@ -386,13 +496,16 @@ def markdown(results):
     """The table of docs/node_benchmark.md (medians over the runs; tops behind: the runs' range)."""
     rows = ['| node | tops | rate asked [Hz] | tf | top_states received [Hz] | node CPU [share of a core] | CPU per top '
             '[us per s] | CPU per top per tick [us] (per tick made) | command latency p50 / max [ms] | tops behind | start-up [s] | topics [s] | none behind from [s] | load '
-            '| runs |', '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|']
+            '| runs | ~tops/command answered from [s] | top_states at the rate from [s] |',
+            '|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|']
     for r in results:
         ms = ['-' if r[k] is None else '%.1f' % r[k] for k in ('latency_p50_ms', 'latency_max_ms')]
-        opt = ['-' if r.get(k) is None else '%.1f' % r[k] for k in ('topics_s', 'caught_up_s')]
-        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %s | %s | %.1f-%.1f | %d |' % (
+        opt = ['-' if r.get(k) is None else '%.1f' % r[k]
+               for k in ('topics_s', 'caught_up_s', 'ready_s', 'rate_s')]
+        rows.append('| %s | %d | %g | %s | %.1f | %.3f | %.0f | %.2f (%.2f) | %s / %s | %s | %.1f | %s | %s | %.1f-%.1f | %d | %s | %s |' % (
             r['node'], r['tops'], r['rate_hz'], 'on' if r['tf'] else 'off', r['top_states_hz'], r['cpu_share'],
-            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], opt[0], opt[1], r['load_before'], r['load_after'], r['runs']))
+            r['cpu_us_per_top_per_s'], r['cpu_us_per_top_per_tick'], r['cpu_us_per_top_per_tick_received'] or 0.0, ms[0], ms[1], r['tops_behind_range'], r['startup_s'], opt[0], opt[1], r['load_before'], r['load_after'], r['runs'],
+            opt[2], opt[3]))
     return '\n'.join(rows)
 
 

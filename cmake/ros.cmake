@@ -102,6 +102,8 @@ if(CATKIN_ENABLE_TESTING)
   add_rostest(test/ros/start_errors.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/scene_names.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/tops.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
+  # ~tops/command, ~per_top_topics both ways, the batch spawn (issue 49).
+  add_rostest(test/ros/tops_command.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/background_topics.test DEPENDENCIES top_sim_node ${PROJECT_NAME}_generate_messages_py)
   add_rostest(test/ros/markers.test DEPENDENCIES top_sim_node)
   add_rostest(test/ros/disc_end.test DEPENDENCIES top_sim_node)

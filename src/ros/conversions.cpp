@@ -266,7 +266,8 @@ top_sim::Command command_from_message(const top_sim::TopCommand& msg, std::strin
     if (!error.empty()) return c;
     c.friction = std::move(change);
   }
-  if (c.empty()) error = "command: no field is set (set_inclination, set_spin, ..., set_drag all false)";
+  if (c.empty() && !msg.reset && !msg.set_paused)
+    error = "command: no field is set (reset, set_paused, set_inclination, set_spin, ..., set_drag all false)";
   return c;
 }
 

@@ -49,7 +49,8 @@ void to_contact_transform(const top_sim::TopPose& s, const ros::Time& stamp, con
 void to_grid_transform(const top_sim::TopPose& s, double pitch, const ros::Time& stamp, const Frames& frames,
                        geometry_msgs::TransformStamped& plane_grid);
 
-// The set fields of a TopCommand; "" or an error naming field, value and allowed range in `error`. A friction
+// The set fields of a TopCommand (the core's; reset and pause are the node's, NodeTop::command); "" or an error
+// naming field, value and allowed range in `error` (also when no field, reset or set_paused is set). A friction
 // change names the law and the parameters the message gives (friction_given, else the law's nonzero fields); the
 // core applies it over the law in force (top_sim::changed_law, the rule of every adapter).
 top_sim::Command command_from_message(const top_sim::TopCommand& msg, std::string& error);

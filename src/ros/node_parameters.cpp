@@ -152,7 +152,14 @@ NodeParameters read_node_parameters(ParamReader& p) {
   n.topics_at_start = p.integer("topics_at_start", n.topics_at_start);
   require(n.topics_at_start >= -1, p.where("topics_at_start"), n.topics_at_start,
           ">= 0 tops, or -1 = all (the launch-time top's are always there)");
+  if (p.has("per_top_topics"))  // a string or a number is refused by flag(): "must be true or false"
+    n.per_top_topics = p.flag("per_top_topics", true) ? PerTopTopics::on : PerTopTopics::off;
   return n;
+}
+
+bool own_topics(PerTopTopics rule, std::size_t tops) {
+  if (rule == PerTopTopics::by_count) return tops <= kPerTopTopicsUpTo;
+  return rule == PerTopTopics::on;
 }
 
 top_sim::Scene scene_value(XmlRpc::XmlRpcValue& value, const std::string& source, const std::string& config_dir,

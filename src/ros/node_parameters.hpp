@@ -3,6 +3,7 @@
 // parameter, never a silent default.
 #pragma once
 
+#include <cstddef>
 #include <set>
 #include <stdexcept>
 #include <string>
@@ -45,6 +46,14 @@ class ParamReader {
   std::set<std::string> known_;
 };
 
+// ~per_top_topics: whether a spawned top gets its own five topics (NAME/top_state, NAME/path, NAME/inclination,
+// NAME/spin, NAME/command); every top is on ~top_states and ~tops/command anyway. Unset: by the node's count.
+enum class PerTopTopics { by_count, on, off };
+constexpr std::size_t kPerTopTopicsUpTo = 100;  // by_count: on while the node has at most this many tops
+
+// Whether a top gets its own topics under `rule` when the node will hold `tops` tops (the new ones counted).
+bool own_topics(PerTopTopics rule, std::size_t tops);
+
 struct NodeParameters {
   double publish_rate = 200.0;      // [Hz], in (0, kMaxPublishRate]
   double real_time_factor = 1.0;    // >= 0, 0 = as fast as possible
@@ -68,6 +77,7 @@ struct NodeParameters {
   // Tops (the launch-time top counted) whose own topics exist before the loop starts; the others' are opened on a
   // background thread (topic_opener.hpp); -1 = all before the loop.
   int topics_at_start = 100;
+  PerTopTopics per_top_topics = PerTopTopics::by_count;
 };
 
 constexpr double kMaxPublishRate = 10000.0;

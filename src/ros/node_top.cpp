@@ -42,11 +42,11 @@ ros::Publisher counted(ros::NodeHandle& pnh, const std::string& topic, uint32_t 
 
 // The publishers' callbacks run in spinOnce() on the loop's thread, whichever thread advertised.
 TopTopics NodeTop::open_topics(ros::NodeHandle& pnh, const std::shared_ptr<unsigned>& changes, SubmitCommand submit,
-                               RejectionLog& log) const {
+                               ApplyMessage apply, RejectionLog& log) const {
   TopTopics t;
   t.state = counted<top_sim::TopState>(pnh, prefix_ + "top_state", 10, output.state_subscribers, changes);
   t.path = counted<nav_msgs::Path>(pnh, prefix_ + "path", 2, output.path_subscribers, changes);
-  t.input = std::make_unique<TopInput>(pnh, prefix_, name_, std::move(submit), log);
+  t.input = std::make_unique<TopInput>(pnh, prefix_, name_, std::move(submit), std::move(apply), log);
   return t;
 }
 
@@ -57,7 +57,7 @@ void NodeTop::install(TopTopics topics) {
 }
 
 void NodeTop::advance(double wall, double budget, bool paused, std::chrono::steady_clock::time_point start) {
-  const bool running = !paused && !sim_->stopped();
+  const bool running = !paused && !paused_ && !sim_->stopped();
   if (!running) {
     sim_->advance_to(sim_->time());  // applies pending commands without moving time
   } else {
@@ -76,6 +76,25 @@ void NodeTop::reset(double wall) {
 }
 
 void NodeTop::reanchor(double wall, bool clear_window) { pacer_.reanchor(wall, sim_->time(), clear_window); }
+
+void NodeTop::set_paused(bool paused, double wall) {
+  if (paused == paused_) return;
+  paused_ = paused;
+  reanchor(wall, true);  // as ~pause does: the time paused is not debt
+}
+
+std::string NodeTop::command(const top_sim::TopCommand& m, double wall, top_sim::Command& applied) {
+  std::string error;
+  const top_sim::Command c = command_from_message(m, error);
+  if (error.empty() && !c.empty()) error = top_sim::validate(c, m.reset ? sim_->scene().model : sim_->model());
+  if (!error.empty()) return error;
+  if (m.reset) reset(wall);
+  if (m.set_paused) set_paused(m.paused, wall);
+  if (c.empty()) return "";
+  error = sim_->submit(c);  // validated above against the same model: refused only if the core's rules differ
+  if (error.empty()) applied = c;
+  return error;
+}
 
 std::size_t NodeTop::take_steps() {
   const std::size_t now = sim_->stats().steps;
@@ -107,8 +126,8 @@ void NodeTop::report(double real_time_factor, double publish_rate, bool paused) 
     ROS_WARN("top_sim_node: falling behind: achieved %.3g of requested %.3g (the physics gets %.3g ms of each "
              "%.3g ms period; debt beyond %.2g s is dropped)", achieved, real_time_factor, 1e3 * pacer_.budget(),
              1e3 / publish_rate, pacer_.options().max_debt);
-  } else if (paused || sim_->stopped()) {
-    ROS_INFO("top_sim_node: %s: no longer falling behind", paused                          ? "paused"
+  } else if (paused || paused_ || sim_->stopped()) {
+    ROS_INFO("top_sim_node: %s: no longer falling behind", paused || paused_                        ? "paused"
                                                             : sim_->end_state() != top_sim::EndState::none ? "ended"
                                                                                                    : "stopped by a fault");
   } else {

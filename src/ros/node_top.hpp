@@ -60,6 +60,13 @@ class NodeTop {
                std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now());
   void reset(double wall);                          // to the scene's initial state; time keeps running forward
   void reanchor(double wall, bool clear_window);    // after pause, resume, a new factor
+  // This top alone paused (~pause pauses the node, every top): its time stays, commands still apply.
+  void set_paused(bool paused, double wall);
+  bool paused() const { return paused_; }
+  // A TopCommand for this top (its own ~command or ~tops/command): checked as a whole first, the core's fields
+  // against the model they will meet (the scene's when it resets), then reset, pause or resume, the fields. "" or
+  // why nothing was applied; `applied` gets the core's fields that were submitted.
+  std::string command(const top_sim::TopCommand& m, double wall, top_sim::Command& applied);
   // Logs a new fault or a change of the behind state once (spawned tops' lines are throttled node-wide).
   void report(double real_time_factor, double publish_rate, bool paused);
 
@@ -67,7 +74,7 @@ class NodeTop {
   // counted in output's counters and in `changes`), and inclination, spin and command, whose commands go to
   // `submit`. Thread-safe (the node handle and the top's constant parts): the TopicOpener calls it off the loop.
   TopTopics open_topics(ros::NodeHandle& pnh, const std::shared_ptr<unsigned>& changes, SubmitCommand submit,
-                        RejectionLog& log) const;
+                        ApplyMessage apply, RejectionLog& log) const;
   void install(TopTopics topics);  // on the loop's thread
 
   const std::string& name() const { return name_; }
@@ -94,6 +101,7 @@ class NodeTop {
   double node_time_;
   std::size_t steps_reported_ = 0, mode_switches_ = 0;
   bool fault_reported_ = false, behind_reported_ = false;
+  bool paused_ = false;  // this top alone (TopCommand's set_paused)
   std::unique_ptr<TopInput> input_;  // its subscribers, once installed
 };
 

@@ -129,7 +129,8 @@ void StateOutput::publish_top(NodeTop& top, const TickFlags& flags) {
                        static_cast<std::size_t>(params_.path_length));
   add_transforms(top, pose, stamp);
   if (top.launch_top())
-    publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused, friction_law(top));
+    publish_lcm(s, top.pacer().achieved_factor(), flags.requested_factor, flags.paused || top.paused(),
+                friction_law(top));
   if (!subscribed && !flags.array) return;  // a message nobody reads is not built (thousands of tops)
   top_sim::TopState& msg = flags.array ? next_state(top) : own_;
   fill_state(top, s, stamp, flags, msg);
@@ -147,8 +148,8 @@ void StateOutput::fill_state(NodeTop& top, const top_sim::Snapshot& s, const ros
   to_msg(s, stamp, top.frames().plane, msg);
   msg.real_time_factor = top.pacer().achieved_factor();
   msg.requested_real_time_factor = flags.requested_factor;
-  msg.paused = flags.paused;
-  msg.friction_law = friction_law(top);  // what the panel's law box shows
+  msg.paused = flags.paused || top.paused();  // the node, or this top alone (TopCommand)
+  msg.friction_law = friction_law(top);       // what the panel's law box shows
 }
 
 // The next entry of the array, reused from the last tick when there is one (its strings keep their storage); its

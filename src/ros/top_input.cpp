@@ -26,8 +26,12 @@ void RejectionLog::flush(double wall) {
 }
 
 TopInput::TopInput(ros::NodeHandle& nh, const std::string& prefix, const std::string& top_name, SubmitCommand submit,
-                   RejectionLog& log)
-    : label_(prefix.empty() ? "" : "top " + top_name + ": "), submit_(std::move(submit)), log_(log) {
+                   ApplyMessage apply, RejectionLog& log)
+    : label_(prefix.empty() ? "" : "top " + top_name + ": "),
+      name_(top_name),
+      submit_(std::move(submit)),
+      apply_(std::move(apply)),
+      log_(log) {
   // No Nagle delay on commands: their latency is part of the contract (two publish periods).
   const ros::TransportHints hints = ros::TransportHints().tcpNoDelay();
   inclination_ = nh.subscribe(prefix + "inclination", kQueue, &TopInput::on_inclination, this, hints);
@@ -54,12 +58,12 @@ void TopInput::on_spin(const std_msgs::Float64::ConstPtr& m) {
 
 void TopInput::on_command(const top_sim::TopCommand::ConstPtr& m) {
   std::string error;
-  const top_sim::Command c = command_from_message(*m, error);
-  if (!error.empty()) {
-    log_.warn(label_ + "command rejected: " + error, ros::WallTime::now().toSec());
-    return;
-  }
-  submit(c, "command");
+  if (!m->name.empty() && m->name != name_)  // a command meant for another top is never applied to this one
+    error = "name = '" + m->name + "': this topic is top '" + name_ + "''s own: name must be empty or '" + name_ +
+            "' (~tops/command takes any top)";
+  else
+    error = apply_(*m);
+  if (!error.empty()) log_.warn(label_ + "command rejected: " + error, ros::WallTime::now().toSec());
 }
 
 }  // namespace top_sim_ros

@@ -32,12 +32,15 @@ class RejectionLog {
 
 // Submits a command to a top; returns "" or the core's reason for refusing it.
 using SubmitCommand = std::function<std::string(const top_sim::Command&)>;
+// Applies a whole TopCommand (reset, pause, the core's fields) to a top; returns "" or why nothing was applied.
+using ApplyMessage = std::function<std::string(const top_sim::TopCommand&)>;
 
 // The three command topics of one top under `nh` + `prefix` ("" for the launch-time top, "NAME/" for a spawned one).
+// A TopCommand's `name` there is empty or the top's own.
 class TopInput {
  public:
   TopInput(ros::NodeHandle& nh, const std::string& prefix, const std::string& top_name, SubmitCommand submit,
-           RejectionLog& log);
+           ApplyMessage apply, RejectionLog& log);
 
  private:
   void submit(const top_sim::Command& c, const char* source);
@@ -47,7 +50,9 @@ class TopInput {
 
   static constexpr uint32_t kQueue = 100;  // a 1 kHz stream is 5 per 200 Hz tick; 10 dropped 0.24 % of a flood
   std::string label_;                      // "" or "top NAME: " in warnings
+  std::string name_;
   SubmitCommand submit_;
+  ApplyMessage apply_;
   RejectionLog& log_;
   ros::Subscriber inclination_, spin_, command_;
 };

@@ -25,12 +25,12 @@ std::string TopSet::check_new_name(const std::string& name) const {
            std::to_string(kMaxNameLength);
   if (!is_base_name(name))
     return "name '" + name + "' is not a base ROS name: a letter, then letters, digits or '_' (no '/', no spaces)";
-  for (const auto& t : tops_)
-    if (t->name() == name) return "name '" + name + "' is taken: a top of that name exists (~list)";
+  if (by_name_.count(name)) return "name '" + name + "' is taken: a top of that name exists (~list)";
   return "";
 }
 
 NodeTop& TopSet::add(std::unique_ptr<NodeTop> top) {
+  by_name_[top->name()] = top.get();
   tops_.push_back(std::move(top));
   return *tops_.back();
 }
@@ -40,15 +40,15 @@ std::unique_ptr<NodeTop> TopSet::remove(const std::string& name) {
     if ((*it)->name() != name) continue;
     std::unique_ptr<NodeTop> top = std::move(*it);
     tops_.erase(it);
+    by_name_.erase(name);
     return top;
   }
   return nullptr;
 }
 
 NodeTop* TopSet::find(const std::string& name) {
-  for (auto& t : tops_)
-    if (t->name() == name) return t.get();
-  return nullptr;
+  const auto it = by_name_.find(name);
+  return it == by_name_.end() ? nullptr : it->second;
 }
 
 std::vector<std::string> TopSet::names() const {

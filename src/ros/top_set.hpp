@@ -5,6 +5,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <unordered_map>
 #include <vector>
 
 #include "node_top.hpp"
@@ -19,7 +20,7 @@ class TopSet {
   std::string check_new_name(const std::string& name) const;
   NodeTop& add(std::unique_ptr<NodeTop> top);
   std::unique_ptr<NodeTop> remove(const std::string& name);  // nullptr when there is no such top
-  NodeTop* find(const std::string& name);
+  NodeTop* find(const std::string& name);  // by an index: ~tops/command looks a top up among thousands
   NodeTop& launch_top() { return *tops_.front(); }  // added first, never removed
   std::vector<std::string> names() const;
   std::size_t size() const { return tops_.size(); }
@@ -35,6 +36,7 @@ class TopSet {
 
  private:
   Tops tops_;
+  std::unordered_map<std::string, NodeTop*> by_name_;
   std::size_t first_ = 0;
 };
 

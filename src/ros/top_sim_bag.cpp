@@ -10,8 +10,10 @@
 #include <fstream>
 #include <iostream>
 #include <limits>
+#include <algorithm>
 #include <map>
 #include <optional>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -21,6 +23,7 @@
 #include "plot.hpp"
 #include "writers.hpp"
 #include "top_sim/TopState.h"
+#include "top_sim/TopStateArray.h"
 #include "top_sim/format.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/scene.hpp"
@@ -31,7 +34,9 @@ const char* kUsage =
     "usage: top_sim_bag BAG [--top NAME] [--csv FILE] [--json FILE|-] [--plot FILE.png] [--scene FILE]\n"
     "                   [--from T0] [--to T1]\n"
     "  Reads every top_sim/TopState topic of BAG: /NS/top_state is the top NS (a node's launch-time top),\n"
-    "  /NS/NAME/top_state the top NAME. With several tops each output is written per top, FILE's name + _NAME.\n"
+    "  /NS/NAME/top_state the top NAME; and every top in a top_sim/TopStateArray topic (/NS/top_states) that\n"
+    "  has no TopState topic of its own in BAG (the array's first and last messages name them; --top finds any).\n"
+    "  With several tops each output is written per top, FILE's name + _NAME.\n"
     "  --top NAME      only this top (its name or its topic)\n"
     "  --csv FILE      top_sim_run's CSV columns, t = TopState.sim_time\n"
     "  --json FILE     the summary (- for standard output; one top only)\n"
@@ -90,6 +95,7 @@ bool parse_arguments(int argc, char** argv, Arguments& args) {
 
 struct Top {
   std::string name, topic;
+  std::string entry;  // in a TopStateArray topic: the top's name in its `names`; "" for a TopState topic
 };
 
 constexpr const char* kLaunchTopName = "top";  // the node's name for its launch-time top (docs/ros.md, "Many tops")
@@ -121,37 +127,110 @@ std::string qualified_name(const std::string& topic) {
   return ns;
 }
 
-// The bag's top_sim/TopState topics, in topic order; throws BadInput when there is none.
-std::vector<Top> tops_in(rosbag::Bag& bag) {
+// The names in an array topic's first and last messages (a top spawned and killed between them is not listed; --top
+// NAME reads it all the same), in the order of the first, then the last's new ones.
+std::vector<std::string> array_names(rosbag::Bag& bag, const rosbag::ConnectionInfo& c) {
+  rosbag::View view(bag, rosbag::TopicQuery(c.topic));
+  std::vector<std::string> names;
+  std::set<std::string> seen;
+  const auto add = [&](const rosbag::MessageInstance& mi) {
+    const top_sim::TopStateArray::ConstPtr m = mi.instantiate<top_sim::TopStateArray>();
+    if (!m)
+      throw BadInput{"topic " + c.topic + ": recorded with another TopStateArray definition (md5 " + mi.getMD5Sum() +
+                     ", this build reads " + ros::message_traits::MD5Sum<top_sim::TopStateArray>::value() + ")"};
+    for (const std::string& n : m->names)
+      if (seen.insert(n).second) names.push_back(n);
+  };
+  if (view.size() == 0) return names;
+  add(*view.begin());
+  rosbag::View last(bag, rosbag::TopicQuery(c.topic), view.getEndTime(), view.getEndTime());
+  if (last.size() > 0) add(*last.begin());
+  return names;
+}
+
+// "/ns/top_states" -> "ns" ('/' written '.', as qualified_name does): names an array top whose name another has.
+std::string array_namespace(const std::string& topic) {
+  std::string ns = topic.substr(topic.front() == '/' ? 1 : 0);
+  const std::string suffix = "top_states";
+  if (ns.size() >= suffix.size() && ns.compare(ns.size() - suffix.size(), suffix.size(), suffix) == 0)
+    ns.resize(ns.size() - suffix.size());
+  while (!ns.empty() && ns.back() == '/') ns.pop_back();
+  for (char& c : ns)
+    if (c == '/') c = '.';
+  return ns;
+}
+
+// The tops of the bag's array topics that no TopState topic of the bag carries (by short name).
+void add_array_tops(rosbag::Bag& bag, const std::vector<const rosbag::ConnectionInfo*>& arrays,
+                    std::map<std::string, int>& uses, std::vector<Top>& tops) {
+  std::vector<Top> found;
+  for (const rosbag::ConnectionInfo* c : arrays)
+    for (const std::string& n : array_names(bag, *c))
+      if (uses[n] == 0) found.push_back({n, c->topic, n});
+  std::map<std::string, int> counts;
+  for (const Top& t : found) ++counts[t.name];
+  for (Top& t : found) {
+    if (counts[t.name] > 1) t.name = array_namespace(t.topic) + "." + t.entry;  // two nodes' tops of one name
+    tops.push_back(t);
+  }
+}
+
+// The bag's tops: its top_sim/TopState topics, in topic order, then the tops only its TopStateArray topics carry;
+// throws BadInput when there is none.
+std::vector<Top> tops_in(rosbag::Bag& bag, std::vector<std::string>& array_topics_out) {
   rosbag::View view(bag);
   std::map<std::string, std::string> topics, others;  // topic -> short name; topic -> type
   std::map<std::string, int> uses;
+  std::vector<const rosbag::ConnectionInfo*> arrays;
+  std::set<std::string> array_topics;
   for (const rosbag::ConnectionInfo* c : view.getConnections()) {
-    if (c->datatype != ros::message_traits::DataType<top_sim::TopState>::value())
+    if (c->datatype == ros::message_traits::DataType<top_sim::TopStateArray>::value()) {
+      if (array_topics.insert(c->topic).second) arrays.push_back(c);
+    } else if (c->datatype != ros::message_traits::DataType<top_sim::TopState>::value()) {
       others.emplace(c->topic, c->datatype);
-    else if (topics.emplace(c->topic, short_name(c->topic)).second)
+    } else if (topics.emplace(c->topic, short_name(c->topic)).second) {
       ++uses[short_name(c->topic)];
-  }
-  if (topics.empty()) {
-    std::string list;
-    for (const auto& [topic, type] : others) list += (list.empty() ? "" : ", ") + topic + " (" + type + ")";
-    throw BadInput{"bag = '" + bag.getFileName() + "': no top_sim/TopState topic; the bag has: " +
-                   (list.empty() ? std::string("no messages") : list)};
+    }
   }
   std::vector<Top> tops;
-  for (const auto& [topic, name] : topics) tops.push_back({uses[name] > 1 ? qualified_name(topic) : name, topic});
+  for (const auto& [topic, name] : topics) tops.push_back({uses[name] > 1 ? qualified_name(topic) : name, topic, ""});
+  add_array_tops(bag, arrays, uses, tops);
+  array_topics_out.assign(array_topics.begin(), array_topics.end());
+  if (tops.empty()) {
+    std::string list;
+    for (const auto& [topic, type] : others) list += (list.empty() ? "" : ", ") + topic + " (" + type + ")";
+    throw BadInput{"bag = '" + bag.getFileName() + "': no top_sim/TopState or TopStateArray topic; the bag has: " +
+                   (list.empty() ? std::string("no messages") : list)};
+  }
   return tops;
 }
 
-// The tops to read: all, or the one --top names (by name or topic); throws BadInput for an unknown name.
-std::vector<Top> select(const std::vector<Top>& tops, const std::string& wanted, const std::string& bag) {
+// The first array topic any of whose messages names `name` (a top spawned and killed between the first and last
+// messages, which tops_in does not list), or "".
+std::string array_with(rosbag::Bag& bag, const std::vector<std::string>& arrays, const std::string& name) {
+  for (const std::string& topic : arrays) {
+    rosbag::View view(bag, rosbag::TopicQuery(topic));
+    for (const rosbag::MessageInstance& m : view) {
+      const top_sim::TopStateArray::ConstPtr a = m.instantiate<top_sim::TopStateArray>();
+      if (a && std::find(a->names.begin(), a->names.end(), name) != a->names.end()) return topic;
+    }
+  }
+  return "";
+}
+
+// The tops to read: all, or the one --top names (by name or topic; or a name in an array topic's messages); throws
+// BadInput for an unknown name.
+std::vector<Top> select(rosbag::Bag& bag, const std::vector<Top>& tops, const std::vector<std::string>& arrays,
+                        const std::string& wanted) {
   if (wanted.empty()) return tops;
   std::string known;
   for (const Top& t : tops) {
-    if (t.name == wanted || t.topic == wanted) return {t};
+    if (t.name == wanted || (t.entry.empty() && t.topic == wanted)) return {t};
     known += (known.empty() ? "" : ", ") + t.name + " (" + t.topic + ")";
   }
-  throw BadInput{"--top = '" + wanted + "': no such top in '" + bag + "'; its tops: " + known};
+  if (const std::string topic = array_with(bag, arrays, wanted); !topic.empty()) return {{wanted, topic, wanted}};
+  const std::string bag_name = bag.getFileName();
+  throw BadInput{"--top = '" + wanted + "': no such top in '" + bag_name + "'; its tops: " + known};
 }
 
 // FILE for one top; FILE's stem + "_" + NAME + its extension when there are several ("run.csv" -> "run_NAME.csv").
@@ -164,17 +243,39 @@ std::string output_path(const std::string& path, const Top& top, bool several) {
 // Calls fn(snapshot) for each TopState of `topic` with sim_time in [from, to] that is later than the last one
 // passed (a paused or faulted node repeats its instant); returns how many were skipped so. Throws BadInput for a
 // message of another TopState definition or one that does not convert.
+// The top's TopState in a message of its topic: the message itself, or its entry of an array (nullptr when this
+// array does not carry the top). `index` keeps the entry's place from message to message.
+const top_sim::TopState* state_of(const rosbag::MessageInstance& m, const Top& top, std::size_t& index,
+                                  top_sim::TopState::ConstPtr& one, top_sim::TopStateArray::ConstPtr& array) {
+  const bool in_array = !top.entry.empty();
+  if (in_array ? !(array = m.instantiate<top_sim::TopStateArray>()) : !(one = m.instantiate<top_sim::TopState>())) {
+    const std::string type = in_array ? "TopStateArray" : "TopState";
+    const std::string md5 = in_array ? ros::message_traits::MD5Sum<top_sim::TopStateArray>::value()
+                                     : ros::message_traits::MD5Sum<top_sim::TopState>::value();
+    throw BadInput{"topic " + top.topic + ": recorded with another " + type + " definition (md5 " + m.getMD5Sum() +
+                   ", this build reads " + md5 + ")"};
+  }
+  if (!in_array) return one.get();
+  const std::size_t n = std::min(array->names.size(), array->states.size());
+  if (index >= n || array->names[index] != top.entry) {  // the order changes only when tops come or go
+    index = std::find(array->names.begin(), array->names.begin() + n, top.entry) - array->names.begin();
+    if (index >= n) return nullptr;
+  }
+  return &array->states[index];
+}
+
 template <class Fn>
-std::uint64_t for_each_state(rosbag::Bag& bag, const std::string& topic, const Arguments& args, Fn fn) {
-  rosbag::View view(bag, rosbag::TopicQuery(topic));
+std::uint64_t for_each_state(rosbag::Bag& bag, const Top& top, const Arguments& args, Fn fn) {
+  rosbag::View view(bag, rosbag::TopicQuery(top.topic));
   std::uint64_t skipped = 0;
   double last = -std::numeric_limits<double>::infinity();
+  std::size_t index = 0;
+  top_sim::TopState::ConstPtr one;
+  top_sim::TopStateArray::ConstPtr array;
+  const std::string& topic = top.topic;
   for (const rosbag::MessageInstance& m : view) {
-    const top_sim::TopState::ConstPtr msg = m.instantiate<top_sim::TopState>();
-    if (!msg)
-      throw BadInput{"topic " + topic + ": recorded with another TopState definition (md5 " + m.getMD5Sum() +
-                     ", this build reads " + ros::message_traits::MD5Sum<top_sim::TopState>::value() + ")"};
-    if (msg->sim_time < args.from || msg->sim_time > args.to) continue;
+    const top_sim::TopState* msg = state_of(m, top, index, one, array);
+    if (!msg || msg->sim_time < args.from || msg->sim_time > args.to) continue;
     if (!(msg->sim_time > last)) {
       ++skipped;
       continue;
@@ -214,7 +315,7 @@ struct Outputs {
 std::pair<double, double> kept_span(rosbag::Bag& bag, const Top& top, const Arguments& args) {
   std::uint64_t n = 0;
   double first = 0.0, last = 0.0;
-  for_each_state(bag, top.topic, args, [&](const top_sim::Snapshot& s) {
+  for_each_state(bag, top, args, [&](const top_sim::Snapshot& s) {
     if (n++ == 0) first = s.t;
     last = s.t;
   });
@@ -276,7 +377,7 @@ bool summarise(rosbag::Bag& bag, const Top& top, const Arguments& args, const to
   src.topic = top.topic;
   src.top = top.name;
   src.scene = scene;
-  src.skipped = for_each_state(bag, top.topic, args, [&](const top_sim::Snapshot& s) {
+  src.skipped = for_each_state(bag, top, args, [&](const top_sim::Snapshot& s) {
     acc.add(s);
     if (csv.is_open()) rows.row(s);
   });
@@ -313,7 +414,9 @@ int run(const Arguments& args) {
   bag.open(args.bag, rosbag::bagmode::Read);
   std::optional<top_sim::Scene> scene;
   if (!args.scene.empty()) scene = load(args.scene);
-  const std::vector<Top> tops = select(tops_in(bag), args.top, args.bag);
+  std::vector<std::string> arrays;
+  const std::vector<Top> listed = tops_in(bag, arrays);
+  const std::vector<Top> tops = select(bag, listed, arrays, args.top);
   const bool several = tops.size() > 1;
   if (several && args.json == "-")
     throw BadInput{"--json = '-': standard output takes one top; the bag has " + std::to_string(tops.size()) +

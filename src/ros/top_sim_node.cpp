@@ -8,6 +8,10 @@
 #include <malloc.h>
 
 #include <algorithm>
+#include <cstdint>
+#include <iomanip>
+#include <set>
+#include <stdexcept>
 #include <memory>
 #include <sstream>
 
@@ -56,18 +60,22 @@ class TopSimNode {
     start_wall_ = wall;
     NodeTop& top = tops_.add(std::make_unique<NodeTop>(kLaunchTopName, true, launch_scene_, params_.frames, 0.0,
                                                        params_.real_time_factor, params_.publish_rate, wall));
-    connect(top, false);
+    connect(top, Topics::now);
+    const bool own = top_sim_ros::own_topics(params_.per_top_topics, 1 + start_tops.size());
     for (auto& [name, scene] : start_tops) {
       // Beyond `topics_at_start` tops, a top's own topics follow on the background thread (docs/ros.md).
       const bool background = params_.topics_at_start >= 0 &&
                               tops_.size() >= static_cast<std::size_t>(std::max(params_.topics_at_start, 1));
-      const std::string error = spawn(name, scene, background);
+      const std::string error = spawn(name, scene, !own ? Topics::none : background ? Topics::later : Topics::now);
       if (!error.empty()) {
         ROS_FATAL("top_sim_node: %s/tops/%s: %s", pnh_.getNamespace().c_str(), name.c_str(), error.c_str());
         return false;
       }
     }
     advertise_services();
+    // Commands for any top by name: one subscription, however many tops (docs/ros.md, "Many tops").
+    tops_command_ = pnh_.subscribe("tops/command", kTopsCommandQueue, &TopSimNode::on_tops_command, this,
+                                   ros::TransportHints().tcpNoDelay());
     diagnostics_ = std::make_unique<top_sim_ros::NodeDiagnostics>(wall);
     updater_.setHardwareID("top_sim");
     updater_.add("simulation", [this](diagnostic_updater::DiagnosticStatusWrapper& st) { diagnose(st); });
@@ -158,14 +166,13 @@ class TopSimNode {
     pnh_.setParam("view/reach", top_sim_ros::reach_from_contact(scene_.model.top, scene_.model.shapes));
   }
 
-  // A top's topics, now or (`background`) on the opener's thread; installed into the top on the loop's thread.
-  void connect(NodeTop& top, bool background) {
+  // A top's own topics: now, later (on the opener's thread; installed into the top on the loop's thread) or none
+  // (~per_top_topics false: the top is on ~top_states and ~tops/command only).
+  enum class Topics { now, later, none };
+  void connect(NodeTop& top, Topics topics) {
     output_->open(top);
-    if (background) {
-      opener_->add(top);
-      return;
-    }
-    top.install(open_topics(top));
+    if (topics == Topics::later) opener_->add(top);
+    if (topics == Topics::now) top.install(open_topics(top));
   }
 
   // A top's own topics (NodeTop builds them; thread-safe); the launch-time top's accepted commands are shown in
@@ -180,7 +187,34 @@ class TopSimNode {
           if (error.empty() && shown && reconfigure_) reconfigure_->record_for_push(c);
           return error;
         },
-        rejections_);
+        [this, &top](const top_sim::TopCommand& m) { return command(top, m); }, rejections_);
+  }
+
+  // A whole TopCommand on one top (its own ~command or ~tops/command, on the loop's thread); "" or why not. What the
+  // launch-time top accepts shows in dynamic_reconfigure, its reset as ~reset's does.
+  std::string command(NodeTop& top, const top_sim::TopCommand& m) {
+    top_sim::Command applied;
+    const std::string error = top.command(m, ros::WallTime::now().toSec(), applied);
+    if (error.empty() && top.launch_top() && reconfigure_) {
+      if (m.reset) reconfigure_->record_scene_for_push(launch_scene_);
+      if (!applied.empty()) reconfigure_->record_for_push(applied);
+    }
+    return error;
+  }
+
+  // ~tops/command: the top its `name` names; an empty or unknown name, or a bad field, is a throttled warning and
+  // nothing is applied.
+  void on_tops_command(const top_sim::TopCommand::ConstPtr& m) {
+    std::string error;
+    NodeTop* top = m->name.empty() ? nullptr : tops_.find(m->name);
+    if (m->name.empty())
+      error = "name is empty: give the top's name (~list gives the names of the " + tops_count(tops_.size()) + ")";
+    else if (!top)
+      error = "name = '" + m->name + "': no top of that name (~list gives the names of the " +
+              tops_count(tops_.size()) + ")";
+    else if (std::string why = command(*top, *m); !why.empty())
+      error = "top '" + m->name + "': " + why;
+    if (!error.empty()) rejections_.warn("tops/command rejected: " + error, ros::WallTime::now().toSec());
   }
 
   void advertise_services() {
@@ -257,7 +291,7 @@ class TopSimNode {
   static std::string tops_count(std::size_t n) { return std::to_string(n) + (n == 1 ? " top" : " tops"); }
 
   // "" or why not: a new top `name` on `scene`, starting at the node's current simulated time.
-  std::string spawn(const std::string& name, const top_sim::Scene& scene, bool background = false) {
+  std::string spawn(const std::string& name, const top_sim::Scene& scene, Topics topics) {
     const std::string bad = tops_.check_new_name(name);
     if (!bad.empty()) return bad;
     NodeTop& launch = tops_.launch_top();
@@ -265,27 +299,110 @@ class TopSimNode {
     auto top = std::make_unique<NodeTop>(name, false, scene, top_sim_ros::spawned_frames(params_.frames, name),
                                          node_time, params_.real_time_factor, params_.publish_rate,
                                          ros::WallTime::now().toSec());
-    connect(tops_.add(std::move(top)), background);
+    connect(tops_.add(std::move(top)), topics);
     for (const auto& w : scene.warnings) ROS_WARN("top_sim_node: top %s: %s", name.c_str(), w.c_str());
     return "";
   }
 
-  bool on_spawn(top_sim::Spawn::Request& req, top_sim::Spawn::Response& res) {
+  using NewTops = std::vector<std::pair<std::string, top_sim::Scene>>;
+  static constexpr std::uint32_t kMaxCopies = 100000;
+
+  top_sim::Scene spawn_scene(const std::string& text, const std::string& source) {
     try {
-      XmlRpc::XmlRpcValue text(req.scene);
-      const top_sim::Scene scene = top_sim_ros::scene_value(text, "spawn " + req.name, params_.config_dir, scene_);
-      res.message = spawn(req.name, scene);
+      XmlRpc::XmlRpcValue value(text);
+      return top_sim_ros::scene_value(value, source, params_.config_dir, scene_);
     } catch (const std::exception& e) {
-      res.message = std::string("bad scene: ") + e.what();
+      throw std::invalid_argument(std::string("bad scene: ") + e.what());
     }
-    res.success = res.message.empty();
-    if (res.success) {
-      res.message = "spawned top '" + req.name + "' (" + tops_count(tops_.size()) + " now)";
-      ROS_INFO("top_sim_node: %s", res.message.c_str());
+  }
+
+  // The names a spawn asks for: `name`, `names`, or `copies` of NAME0, NAME1, ...; throws std::invalid_argument.
+  static std::vector<std::string> spawn_names(const top_sim::Spawn::Request& req) {
+    if (req.copies > 0 && !req.names.empty())
+      throw std::invalid_argument("copies = " + std::to_string(req.copies) + " and " +
+                                  std::to_string(req.names.size()) + " names: give copies or names, not both");
+    if (req.copies > kMaxCopies)
+      throw std::invalid_argument("copies = " + std::to_string(req.copies) + ": must be 0 (one top) to " +
+                                  std::to_string(kMaxCopies));
+    if (!req.names.empty() && !req.name.empty())
+      throw std::invalid_argument("name = '" + req.name + "' and a list of names: give one of them");
+    std::vector<std::string> names = req.names;
+    for (std::uint32_t i = 0; i < req.copies; ++i) names.push_back(req.name + std::to_string(i));
+    if (names.empty()) names.push_back(req.name);
+    return names;
+  }
+
+  // The tops a spawn asks for, every name checked and every scene read before any is made; throws
+  // std::invalid_argument naming the first problem.
+  NewTops requested_tops(const top_sim::Spawn::Request& req) {
+    const std::vector<std::string> names = spawn_names(req);
+    if (!req.scenes.empty() && req.scenes.size() != names.size())
+      throw std::invalid_argument(std::to_string(req.scenes.size()) + " scenes for " + tops_count(names.size()) +
+                                  ": give one scene per name, or none (all on `scene`)");
+    std::set<std::string> seen;
+    for (const std::string& name : names) {
+      const std::string bad = tops_.check_new_name(name);
+      if (!bad.empty()) throw std::invalid_argument(bad);
+      if (!seen.insert(name).second) throw std::invalid_argument("name '" + name + "' is given twice");
+    }
+    NewTops tops;
+    tops.reserve(names.size());
+    if (req.scenes.empty()) {  // read once for all
+      const top_sim::Scene scene = spawn_scene(req.scene, "spawn " + names.front());
+      for (const std::string& name : names) tops.emplace_back(name, scene);
     } else {
-      ROS_WARN("top_sim_node: spawn '%s' refused: %s", req.name.c_str(), res.message.c_str());
+      for (std::size_t i = 0; i < names.size(); ++i)
+        tops.emplace_back(names[i], spawn_scene(req.scenes[i], "spawn " + names[i]));
     }
+    return tops;
+  }
+
+  // Whether `n` new tops get their own topics: as asked, or by ~per_top_topics counting them.
+  Topics spawn_topics(std::uint8_t asked, std::size_t n) const {
+    using Req = top_sim::Spawn::Request;
+    if (asked == Req::PER_TOP_TOPICS_ON) return Topics::now;
+    if (asked == Req::PER_TOP_TOPICS_OFF) return Topics::none;
+    if (asked != Req::PER_TOP_TOPICS_DEFAULT)
+      throw std::invalid_argument("per_top_topics = " + std::to_string(asked) +
+                                  ": must be 0 (the node's ~per_top_topics rule), 1 (own topics) or 2 (none)");
+    return top_sim_ros::own_topics(params_.per_top_topics, tops_.size() + n) ? Topics::now : Topics::none;
+  }
+
+  bool on_spawn(top_sim::Spawn::Request& req, top_sim::Spawn::Response& res) {
+    const double t0 = ros::WallTime::now().toSec();
+    try {
+      const NewTops tops = requested_tops(req);
+      const Topics topics = spawn_topics(req.per_top_topics, tops.size());
+      for (const auto& [name, scene] : tops) {
+        res.message = spawn(name, scene, topics);  // checked above: fails only on a roscpp error
+        if (!res.message.empty()) break;
+        res.names.push_back(name);
+      }
+      if (res.message.empty()) res.message = spawned_sentence(res.names, topics, t0);
+      res.success = res.names.size() == tops.size();
+    } catch (const std::exception& e) {
+      res.message = e.what();
+    }
+    if (res.success)
+      ROS_INFO("top_sim_node: %s", res.message.c_str());
+    else
+      ROS_WARN("top_sim_node: spawn '%s' refused: %s",
+               req.name.empty() && !req.names.empty() ? req.names.front().c_str() : req.name.c_str(),
+               res.message.c_str());
     return true;
+  }
+
+  std::string spawned_sentence(const std::vector<std::string>& names, Topics topics, double t0) const {
+    if (names.size() == 1 && topics == Topics::now)
+      return "spawned top '" + names.front() + "' (" + tops_count(tops_.size()) + " now)";
+    std::ostringstream os;
+    os << "spawned " << (names.size() == 1 ? "top '" + names.front() + "'"
+                                           : tops_count(names.size()) + " '" + names.front() + "' to '" +
+                                                 names.back() + "'")
+       << " (" << tops_count(tops_.size()) << " now; "
+       << (topics == Topics::none ? "no own topics: ~top_states and ~tops/command" : "with their own topics")
+       << ") in " << std::setprecision(3) << ros::WallTime::now().toSec() - t0 << " s";
+    return os.str();
   }
 
   bool on_kill(top_sim::Kill::Request& req, top_sim::Kill::Response& res) {
@@ -354,6 +471,8 @@ class TopSimNode {
   std::unique_ptr<top_sim_ros::NodeReconfigure> reconfigure_;
   diagnostic_updater::Updater updater_;
   ros::ServiceServer reset_srv_, pause_srv_, spawn_srv_, kill_srv_, list_srv_;
+  ros::Subscriber tops_command_;
+  static constexpr uint32_t kTopsCommandQueue = 10000;  // one command for each of 10,000 tops in a burst
   bool paused_ = false;
   double start_wall_ = 0.0;
   std::size_t topics_pending_ = 0;  // tops whose own topics the opener has not handed over yet

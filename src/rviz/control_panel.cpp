@@ -278,7 +278,8 @@ void ControlWidget::apply() {
   top_sim::TopCommand c;
   const std::string error = fields_to_message(f, c);
   if (!error.empty()) return show_message(refused_message(error));  // nothing is sent
-  const std::string topic = top_name_of(node_, top(), "command");
+  c.name = top();  // ~tops/command steers any top, with or without its own topics (~per_top_topics)
+  const std::string topic = top_name_of(node_, "", "tops/command");
   auto it = commands_.find(topic);
   if (it == commands_.end()) {
     it = commands_.emplace(topic, nh_.advertise<top_sim::TopCommand>(topic, 10, true)).first;

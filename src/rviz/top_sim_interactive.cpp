@@ -152,8 +152,9 @@ class InteractiveTops {
     server_.applyChanges();
   }
 
-  void send(const std::string& top, const top_sim::TopCommand& c) {
-    const std::string topic = top_sim_rviz::top_name_of(node_, top, "command");
+  void send(const std::string& top, top_sim::TopCommand c) {
+    c.name = top;  // ~tops/command steers any top, with or without its own topics (~per_top_topics)
+    const std::string topic = top_sim_rviz::top_name_of(node_, "", "tops/command");
     auto it = commands_.find(topic);
     if (it == commands_.end()) {
       it = commands_.emplace(topic, nh_.advertise<top_sim::TopCommand>(topic, 10, true)).first;

@@ -99,7 +99,7 @@ class BackgroundTopics(unittest.TestCase):
             set(prefix('f') + t for t in ('top_state', 'path', 'inclination', 'spin', 'command')) -
             set(self.missing(['f']))))
         self.assertNotIn('f', self.list().names)
-        r = self.spawn('f', '')  # back, for the tests that run after this one
+        r = self.spawn(name='f', scene='')  # back, for the tests that run after this one
         self.assertTrue(r.success, r.message)
 
 

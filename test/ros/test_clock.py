@@ -94,7 +94,7 @@ class ClockFollower(unittest.TestCase):
         self.assertEqual(failed, [])
 
     def test_reset_keeps_clock_and_stamps_monotonic(self):
-        r = rospy.ServiceProxy(NODE + '/spawn', Spawn)('b', '')
+        r = rospy.ServiceProxy(NODE + '/spawn', Spawn)(name='b', scene='')
         self.assertTrue(r.success, r.message)
         self.addCleanup(rospy.ServiceProxy(NODE + '/kill', Kill), 'b')  # the other tests see the launch's tops only
         reset = rospy.ServiceProxy(NODE + '/reset', Trigger)

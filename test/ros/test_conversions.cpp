@@ -127,6 +127,14 @@ TEST(TopCommand, EmptyCommandIsReported) {
   std::string error;
   command_from_message(top_sim::TopCommand(), error);
   EXPECT_NE(error.find("no field is set"), std::string::npos) << error;
+  top_sim::TopCommand control;  // reset or pause alone is a command (the node's, not the core's: NodeTop::command)
+  control.reset = true;
+  EXPECT_TRUE(command_from_message(control, error).empty());
+  EXPECT_EQ(error, "");
+  control.reset = false;
+  control.set_paused = true;
+  EXPECT_TRUE(command_from_message(control, error).empty());
+  EXPECT_EQ(error, "");
 }
 
 TEST(Transforms, PlaneIsTiltedByAlphaAboutXAndUphillRises) {

@@ -79,7 +79,7 @@ class Interactive(unittest.TestCase):
         self.assertEqual(len(markers[MARKER].controls), 3)
         self.assertEqual(empty_texts(markers[MARKER]), [])
         rospy.wait_for_service('/top_sim/spawn', timeout=30.0)
-        self.assertTrue(rospy.ServiceProxy('/top_sim/spawn', Spawn)('second', '').success)
+        self.assertTrue(rospy.ServiceProxy('/top_sim/spawn', Spawn)(name='second', scene='').success)
         try:
             markers = self.markers_when(lambda ms: 'second/controls' in ms)
             self.assertEqual(empty_texts(markers['second/controls']), [])

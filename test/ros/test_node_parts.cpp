@@ -14,6 +14,7 @@
 #include <chrono>
 #include <cstdint>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <string>
 #include <thread>
@@ -182,6 +183,84 @@ TEST(TopSet, ACostlyTopDoesNotSlowTheOthers) {
   EXPECT_LT(set.find("slow")->sim().time(), 0.1 * target);  // 1e-8 s steps: far behind
   // The budget is checked between steps; one rk4 step is far below a millisecond. Generous for a loaded CI machine.
   EXPECT_LT(worst_tick, budget + 0.05) << "worst tick " << worst_tick << " s";
+}
+
+// The node's parameters under /top_sim from a tree holding only `key` = `v` (key "": publish_rate alone).
+top_sim_ros::NodeParameters parameters_with(const std::string& key, XmlRpc::XmlRpcValue v = XmlRpc::XmlRpcValue()) {
+  XmlRpc::XmlRpcValue tree;
+  if (key.empty())
+    tree["publish_rate"] = 100;
+  else
+    tree[key] = v;
+  ParamReader p(tree, "/top_sim");
+  return top_sim_ros::read_node_parameters(p);
+}
+
+// ~per_top_topics: a strict bool; unset, on while the node holds at most 100 tops (issue 49).
+TEST(NodeParameters, PerTopTopicsIsABoolOrTheRuleByCount) {
+  using top_sim_ros::PerTopTopics;
+  auto read = [](XmlRpc::XmlRpcValue v) { return parameters_with("per_top_topics", v).per_top_topics; };
+  EXPECT_EQ(parameters_with("").per_top_topics, PerTopTopics::by_count);
+  EXPECT_EQ(read(XmlRpc::XmlRpcValue(true)), PerTopTopics::on);
+  EXPECT_EQ(read(XmlRpc::XmlRpcValue(false)), PerTopTopics::off);
+  for (XmlRpc::XmlRpcValue bad : {XmlRpc::XmlRpcValue(std::string("maybe")), XmlRpc::XmlRpcValue(1)}) {
+    const std::string m = message_of([&] { read(bad); });
+    EXPECT_NE(m.find("/top_sim/per_top_topics"), std::string::npos) << m;
+    EXPECT_NE(m.find("must be true or false"), std::string::npos) << m;
+  }
+  EXPECT_TRUE(top_sim_ros::own_topics(PerTopTopics::by_count, 100));
+  EXPECT_FALSE(top_sim_ros::own_topics(PerTopTopics::by_count, 101));
+  EXPECT_TRUE(top_sim_ros::own_topics(PerTopTopics::on, 10000));
+  EXPECT_FALSE(top_sim_ros::own_topics(PerTopTopics::off, 1));
+}
+
+// A TopCommand on one top (NodeTop::command, what ~tops/command and ~NAME/command apply): checked as a whole
+// first; reset, then pause, then the fields; pause of one top leaves the other running.
+TEST(NodeTop, CommandIsCheckedWholeThenResetPauseFields) {
+  top_sim_ros::TopSet set;
+  const double rate = 200.0;
+  set.add(std::make_unique<top_sim_ros::NodeTop>("top", true, default_scene(), top_sim_ros::Frames{}, 0.0, 1.0, rate,
+                                                 0.0));
+  set.add(std::make_unique<top_sim_ros::NodeTop>("b", false, default_scene(), top_sim_ros::Frames{}, 0.0, 1.0, rate,
+                                                 0.0));
+  top_sim_ros::NodeTop& b = *set.find("b");
+  const double alpha0 = b.sim().model().plane.inclination;
+  top_sim::Command applied;
+  top_sim::TopCommand m;
+  m.set_inclination = true;
+  m.inclination = 0.2;
+  m.set_spin = true;
+  m.spin = std::numeric_limits<double>::quiet_NaN();  // one bad field: nothing applied, the field named
+  const std::string error = b.command(m, 0.0, applied);
+  EXPECT_NE(error.find("spin"), std::string::npos) << error;
+  set.advance(1.0 / rate, 0.02, false);
+  EXPECT_EQ(b.sim().model().plane.inclination, alpha0);
+  EXPECT_TRUE(applied.empty());
+  m.set_spin = false;
+  EXPECT_EQ(b.command(m, 1.0 / rate, applied), "");
+  set.advance(2.0 / rate, 0.02, false);
+  EXPECT_EQ(b.sim().model().plane.inclination, 0.2);
+  EXPECT_TRUE(applied.inclination.has_value());
+  top_sim::TopCommand pause;
+  pause.set_paused = pause.paused = true;
+  EXPECT_EQ(b.command(pause, 2.0 / rate, applied), "");
+  const double tb = b.sim().time(), ttop = set.find("top")->sim().time();
+  for (int k = 3; k <= 10; ++k) set.advance(k / rate, 0.02, false);
+  EXPECT_TRUE(b.paused());
+  EXPECT_EQ(b.sim().time(), tb);
+  EXPECT_GT(set.find("top")->sim().time(), ttop);
+  top_sim::TopCommand reset;  // reset with a field: the field applies to the reset top
+  reset.reset = true;
+  reset.set_paused = true;  // and resume
+  reset.set_spin = true;
+  reset.spin = 150.0;
+  EXPECT_EQ(b.command(reset, 10.0 / rate, applied), "");
+  set.advance(11.0 / rate, 0.02, false);
+  EXPECT_FALSE(b.paused());
+  EXPECT_EQ(b.sim().model().plane.inclination, alpha0);
+  EXPECT_NEAR(b.sim().snapshot().spin, 150.0, 1.0);
+  top_sim::TopCommand nothing;
+  EXPECT_NE(b.command(nothing, 0.0, applied).find("no field is set"), std::string::npos);
 }
 
 // Every point of a trail once, oldest first (a chunk starts at its predecessor's last point).
@@ -453,16 +532,8 @@ TEST(MarkerStream, WhatRvizHoldsIsTheTrail) {
 // -1 (not pinned) or a CPU online; anything else names the parameter, its value and the range.
 TEST(NodeParameters, CpuAffinityIsMinusOneOrACpuOnline) {
   const int cpus = top_sim_ros::online_cpus();
-  auto read = [](XmlRpc::XmlRpcValue v) {
-    XmlRpc::XmlRpcValue tree;
-    tree["cpu_affinity"] = v;
-    ParamReader p(tree, "/top_sim");
-    return top_sim_ros::read_node_parameters(p).cpu_affinity;
-  };
-  XmlRpc::XmlRpcValue none;
-  none["publish_rate"] = 100;
-  ParamReader p(none, "/top_sim");
-  EXPECT_EQ(top_sim_ros::read_node_parameters(p).cpu_affinity, -1);
+  auto read = [](XmlRpc::XmlRpcValue v) { return parameters_with("cpu_affinity", v).cpu_affinity; };
+  EXPECT_EQ(parameters_with("").cpu_affinity, -1);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(cpus - 1)), cpus - 1);
   EXPECT_EQ(read(XmlRpc::XmlRpcValue(0)), 0);
   const std::string range = "[0, " + std::to_string(cpus - 1) + "]";

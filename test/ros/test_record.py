@@ -22,7 +22,7 @@ import rospkg
 import rospy
 import rostest
 from std_msgs.msg import String
-from top_sim.msg import TopState
+from top_sim.msg import TopState, TopStateArray
 
 
 PKG = rospkg.RosPack().get_path('top_sim')
@@ -298,6 +298,35 @@ class BagTool(unittest.TestCase):
             with open(self.out('n_%s.json' % name)) as f:
                 self.assertEqual(json.load(f)['top'], name)
 
+    def test_tops_are_read_out_of_top_states(self):
+        """Issue 49: a bag of /NS/top_states alone (what a user records for many tops) gives each top; a top with
+        its own TopState topic in the bag is read from that; one present only between the first and last
+        messages is read with --top."""
+        path = os.path.join(self.work, 'array.bag')
+        times = [0.0, 0.1, 0.2, 0.3]
+        with rosbag.Bag(path, 'w') as b:
+            for k, t in enumerate(times):
+                names = ['top', 'a'] + (['mid'] if k in (1, 2) else []) + (['late'] if k >= 2 else [])
+                arr = TopStateArray(names=names, states=[state(t) for _ in names])
+                arr.states[1].contact_point.x = 2e-3 * t  # a's own path: twice as fast
+                b.write('/top_sim/top_states', arr, rospy.Time(1.0 + 1e-3 * k))
+            for k, t in enumerate(times[:2]):
+                b.write('/top_sim/top_state', state(t), rospy.Time(1.0 + 1e-3 * k))
+        p = self.run_tool(path, '--json', self.out('arr.json'))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        for top, samples in (('top', 2), ('a', 4), ('late', 2)):
+            with open(self.out('arr_%s.json' % top)) as f:
+                self.assertEqual(json.load(f)['samples'], samples, top)
+        self.assertFalse(os.path.exists(self.out('arr_mid.json')))
+        p = self.run_tool(path, '--top', 'mid', '--csv', self.out('mid.csv'))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        self.assertEqual(list(read_csv(self.out('mid.csv'))['t']), [0.1, 0.2])
+        p = self.run_tool(path, '--top', 'a', '--csv', self.out('a.csv'))
+        self.assertEqual(p.returncode, 0, p.stderr)
+        np.testing.assert_allclose(read_csv(self.out('a.csv'))['contact_x'], [2e-3 * t for t in times], rtol=0,
+                                   atol=1e-12)  # a's entry, not another's (1e-3 t)
+        self.assertEqual(self.run_tool(path, '--top', 'nosuch').returncode, 2)
+
     def end_bag(self, end_state, name):
         """A disc's recording: in flight (touching 0), on its rim (touching 1), then stopped at `end_state`."""
         path = os.path.join(self.work, name)
@@ -336,7 +365,7 @@ class BagTool(unittest.TestCase):
         for args, status, words in (
                 ([self.out('missing.bag')], 2, 'no such file'),
                 ([self.out('text.bag')], 2, 'text.bag'),
-                ([chatter], 2, 'no top_sim/TopState topic; the bag has: /chatter (std_msgs/String)'),
+                ([chatter], 2, 'no top_sim/TopState or TopStateArray topic; the bag has: /chatter (std_msgs/String)'),
                 ([two, '--top', 'nope'], 2, "--top = 'nope': no such top"),
                 ([two, '--json', '-'], 2, 'standard output takes one top'),
                 ([two, '--from', '5', '--to', '6'], 2, 'no TopState with sim_time in [5, 6]'),

@@ -59,7 +59,7 @@ class Tops(unittest.TestCase):
         return list(self.list().names)
 
     def spawned(self, name, scene=''):
-        r = self.spawn(name, scene)
+        r = self.spawn(name=name, scene=scene)
         self.assertTrue(r.success, r.message)
         self.addCleanup(self.kill, name)  # a kill of a top already gone is refused, harmlessly
         return name
@@ -160,7 +160,7 @@ class Tops(unittest.TestCase):
         scenes = {'c4': 'top: aluminium\ntop: steel\nfriction: pmma\n', 'd4': 'top: [unclosed',
                   'e4': 'top: aluminium\nfriction: pmma\nspin: 3\n'}
         for name, part in cases:
-            r = self.spawn(name, scenes.get(name, ''))
+            r = self.spawn(name=name, scene=scenes.get(name, ''))
             self.assertFalse(r.success, name)
             self.assertIn(part, r.message, name)
         self.assertEqual(self.names(), names)
@@ -177,7 +177,7 @@ class Tops(unittest.TestCase):
         r = self.kill(k)
         self.assertTrue(r.success, r.message)
         self.assertNotIn(k, self.names())
-        r = self.spawn(k, '')  # the name is free again (the first cleanup kills it)
+        r = self.spawn(name=k, scene='')  # the name is free again (the first cleanup kills it)
         self.assertTrue(r.success, r.message)
 
 
