@@ -61,31 +61,38 @@ TEST(Cli, BadArgumentsExitTwoAndNameTheArgument) {
   EXPECT_TRUE(contains(r.err, "missing.yaml: cannot open")) << r.err;
 }
 
+// top_sim_run on a test fixture with its summary read back: the exit status and the summary's JSON.
+struct FixtureRun {
+  CliResult result;
+  pt::ptree summary;
+};
+FixtureRun run_fixture(const std::string& fixture) {
+  FixtureRun f;
+  const std::string summary = in_scratch(fixture + ".json");
+  f.result = run_cli("'" + top_sim_test::fixture_path(fixture) + "' --summary '" + summary + "'");
+  EXPECT_NO_THROW(pt::read_json(summary, f.summary)) << slurp(summary);
+  return f;
+}
+
 // A top that falls with no shape to catch it has reached an end of its story (physics.md section 8): exit 0, the end
 // state named, no contact fault.
 TEST(Cli, AFallIsAnEndAndExitsZero) {
-  const std::string summary = in_scratch("fallen.json");
-  const CliResult r = run_cli("'" + top_sim_test::fixture_path("falls_over") + "' --summary '" + summary + "'");
-  EXPECT_EQ(r.exit_code, 0) << r.err;
-  EXPECT_FALSE(contains(r.err, "contact fault")) << r.err;
-  pt::ptree j;
-  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
-  EXPECT_EQ(j.get<std::string>("regime"), "fallen");
-  EXPECT_EQ(j.get<std::string>("contact_fault"), "null");
-  EXPECT_EQ(j.get<std::string>("end_state"), "fallen");
-  EXPECT_TRUE(contains(j.get<std::string>("end_state_message"), "max_tilt")) << j.get<std::string>("end_state_message");
+  const FixtureRun f = run_fixture("falls_over");
+  EXPECT_EQ(f.result.exit_code, 0) << f.result.err;
+  EXPECT_FALSE(contains(f.result.err, "contact fault")) << f.result.err;
+  EXPECT_EQ(f.summary.get<std::string>("regime"), "fallen");
+  EXPECT_EQ(f.summary.get<std::string>("contact_fault"), "null");
+  EXPECT_EQ(f.summary.get<std::string>("end_state"), "fallen");
+  EXPECT_TRUE(contains(f.summary.get<std::string>("end_state_message"), "max_tilt"));
 }
 
 // A fault stays a fault: Painleve's paradox (the fixture's large friction on a steep top) exits 3.
 TEST(Cli, ContactFaultExitsThree) {
-  const std::string summary = in_scratch("fault.json");
-  const CliResult r = run_cli("'" + top_sim_test::fixture_path("painleve") + "' --summary '" + summary + "'");
-  EXPECT_EQ(r.exit_code, 3) << r.err;
-  EXPECT_TRUE(contains(r.err, "contact fault")) << r.err;
-  pt::ptree j;
-  ASSERT_NO_THROW(pt::read_json(summary, j)) << slurp(summary);
-  EXPECT_EQ(j.get<std::string>("regime"), "contact_fault");
-  EXPECT_TRUE(contains(j.get<std::string>("contact_fault"), "Painleve")) << j.get<std::string>("contact_fault");
+  const FixtureRun f = run_fixture("painleve");
+  EXPECT_EQ(f.result.exit_code, 3) << f.result.err;
+  EXPECT_TRUE(contains(f.result.err, "contact fault")) << f.result.err;
+  EXPECT_EQ(f.summary.get<std::string>("regime"), "contact_fault");
+  EXPECT_TRUE(contains(f.summary.get<std::string>("contact_fault"), "Painleve"));
 }
 
 TEST(Cli, DefaultSceneSummaryHasTheDocumentedKeysAndSleepsAtPhiStar) {
