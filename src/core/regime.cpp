@@ -21,6 +21,13 @@ const char* to_string(Regime r) {
   return "?";
 }
 
+// |v| without norm()'s spurious overflow: a finite a_cm of 1e161 m/s^2 (an air drag of 1e163 N s/m) squares to inf.
+// Below that, norm() to the bit as before.
+static double magnitude(const Eigen::Vector3d& v) {
+  const double n = v.norm();
+  return std::isfinite(n) || !v.allFinite() ? n : std::hypot(v.x(), v.y(), v.z());
+}
+
 RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
                                    const StationaryState& st) {
   RegimeIndicators ind;
@@ -55,8 +62,8 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   const double denom = an * an + cn * cn;
   ind.nutation_rate = denom > 0.0 ? (cn * an_dot - an * cn_dot) / denom : 0.0;
 
-  ind.acceleration = dyn.a_cm.norm();
-  ind.speed = (velocity3(y) + w.cross(top.com_offset * f_hat)).norm();
+  ind.acceleration = magnitude(dyn.a_cm);
+  ind.speed = magnitude(velocity3(y) + w.cross(top.com_offset * f_hat));
 
   ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
   ind.tippe = top.com_offset < 0.0;

@@ -6,6 +6,8 @@
 #include <string>
 
 #include "test_util.hpp"
+#include "top_sim/dynamics.hpp"
+#include "top_sim/regime.hpp"
 
 namespace {
 
@@ -103,6 +105,36 @@ TEST(FuzzFindings, SceneErrorShowsNulCharactersEscaped) {
     const std::string message = e.what();
     EXPECT_NE(message.find("a\\x00b: unknown key"), std::string::npos) << message;
   }
+}
+
+// Step input with air drag 1.1e163 N s/m (and command's 1e300): the drag tipped the top off the plane, and the
+// closed-form flight (physics.md, "F = 0") ignored the air: the top fell freely, 4.9 um into the plane in 1 ms, with no
+// fault. Air acts in flight (section 12): such a flight is stepped, and the drag slows it and dissipates.
+TEST(FuzzFindings, AirActsInFlight) {
+  const std::string top = "top: aluminium\nfriction: pmma\nplane: {inclination: 0.1}\n"
+                          "initial: {tilt: 0.1, spin: 200, gap: 0.01, velocity: [1.0, 0.0]}\n";
+  Simulator still(scene_from(top)), windy(scene_from(top + "air: {drag: 0.05, spin_drag: 1.0e-6}\n"));
+  for (Simulator* sim : {&still, &windy}) {
+    ASSERT_TRUE(sim->advance_to(0.01));
+    ASSERT_EQ(sim->contact_mode(), ContactMode::flight);  // it falls 0.5 g t^2 = 0.5 mm of its 10 mm
+  }
+  const Snapshot a = still.snapshot(), b = windy.snapshot();
+  EXPECT_EQ(a.dissipated_work, 0.0);
+  EXPECT_GT(b.dissipated_work, 0.0);  // exactly 0 before the fix
+  EXPECT_LT(b.com_velocity.norm(), a.com_velocity.norm());
+  EXPECT_LT(std::abs(b.energy_balance_residual), 1e-6);
+}
+
+// Command input with air drag 1e300 N s/m: a_cm of 1e299 m/s^2 is finite, but norm() squared it to inf, so the
+// snapshot's acceleration indicator was inf without a fault (the overflow guard runs at regime points only).
+TEST(FuzzFindings, IndicatorsOfAFiniteHugeAccelerationAreFinite) {
+  const Scene scene = scene_from("top: aluminium\nfriction: pmma\n");
+  const StateVector y = initial_state(scene);
+  Dynamics dyn;
+  evaluate_dynamics(scene.model, ContactMode::slipping, y, dyn);
+  dyn.a_cm = Eigen::Vector3d(1e299, -1e299, 0.0);
+  const RegimeIndicators ind = regime_indicators(scene.model, y, dyn, stationary_state(scene.model, 200.0));
+  EXPECT_DOUBLE_EQ(ind.acceleration, std::sqrt(2.0) * 1e299);
 }
 
 }  // namespace
