@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <string>
 
+#include "../../src/core/patch_law.hpp"
 #include "test_util.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/regime.hpp"
@@ -135,6 +136,22 @@ TEST(FuzzFindings, IndicatorsOfAFiniteHugeAccelerationAreFinite) {
   dyn.a_cm = Eigen::Vector3d(1e299, -1e299, 0.0);
   const RegimeIndicators ind = regime_indicators(scene.model, y, dyn, stationary_state(scene.model, 200.0));
   EXPECT_DOUBLE_EQ(ind.acceleration, std::sqrt(2.0) * 1e299);
+}
+
+// Command input with a patch radius of 2.8e180 m on the default scene under the auto model: lever * omega_n = 5e182
+// m/s squared to inf in the patch law, so the snapshot's slip was inf without a fault at t = 0.1 ms. |w| falls back to
+// hypot when the square overflows (bit-identical otherwise); the run now ends in a numerical fault.
+TEST(FuzzFindings, PatchOfAHugeRadiusHasAFiniteSlip) {
+  const Scene scene = scene_from("top: aluminium\nfriction: pmma\nmodel: {kind: auto}\n");
+  const PatchLaw law = patch_law(scene.model, 2.77e180, 1e-3, 200.0, 1e-3);
+  EXPECT_NEAR(law.slip, 1.0, 1e-12);
+  EXPECT_TRUE(std::isfinite(law.mu) && std::isfinite(law.force_per_speed) && std::isfinite(law.drilling));
+  Simulator sim(scene);
+  Command c;
+  c.patch_radius = 2.7744062535996355e180;
+  ASSERT_EQ(sim.submit(c), "");
+  sim.advance_to(1e-4);
+  if (sim.fault() == ContactFault::none) EXPECT_EQ(top_sim_test::nonfinite_fields(sim.snapshot()), "");
 }
 
 }  // namespace
