@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "top_sim/contact.hpp"
+
 namespace top_sim {
 
 const char* to_string(Regime r) {
@@ -19,13 +21,6 @@ const char* to_string(Regime r) {
     case Regime::tumbling: return "tumbling";
   }
   return "?";
-}
-
-// |v| without norm()'s spurious overflow: a finite a_cm of 1e161 m/s^2 (an air drag of 1e163 N s/m) squares to inf.
-// Below that, norm() to the bit as before.
-static double magnitude(const Eigen::Vector3d& v) {
-  const double n = v.norm();
-  return std::isfinite(n) || !v.allFinite() ? n : std::hypot(v.x(), v.y(), v.z());
 }
 
 RegimeIndicators regime_indicators(const Model& model, const StateVector& y, const Dynamics& dyn,
@@ -62,8 +57,9 @@ RegimeIndicators regime_indicators(const Model& model, const StateVector& y, con
   const double denom = an * an + cn * cn;
   ind.nutation_rate = denom > 0.0 ? (cn * an_dot - an * cn_dot) / denom : 0.0;
 
-  ind.acceleration = magnitude(dyn.a_cm);
-  ind.speed = magnitude(velocity3(y) + w.cross(top.com_offset * f_hat));
+  // safe_norm (contact.hpp): a finite a_cm of 1e161 m/s^2 (an air drag of 1e163 N s/m) squared to inf in norm().
+  ind.acceleration = safe_norm(dyn.a_cm);
+  ind.speed = safe_norm(velocity3(y) + w.cross(top.com_offset * f_hat));
 
   ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
   ind.tippe = top.com_offset < 0.0;

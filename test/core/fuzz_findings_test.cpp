@@ -154,4 +154,17 @@ TEST(FuzzFindings, PatchOfAHugeRadiusHasAFiniteSlip) {
   if (sim.fault() == ContactFault::none) EXPECT_EQ(top_sim_test::nonfinite_fields(sim.snapshot()), "");
 }
 
+// Step input: the default top made one sphere of radius 1e300 m at offset pi, spin 0: v_t (1.6e297 m/s, the sphere's
+// rolling) was finite but norm() squared it to inf, so the slip was inf without a fault at t = 0.1 ms. The contact's
+// |v_t| and friction direction no longer overflow (safe_norm, regularized_norm in contact.hpp).
+TEST(FuzzFindings, TipSphereOfAHugeRadiusHasAFiniteSlip) {
+  Scene scene = scene_from("top: aluminium\nfriction: pmma\n");
+  scene.model.top.tip_radius = 1e300;
+  const Eigen::Vector3d u(-4.9e-3, -4.9e-3, 0.0), omega(1.6e-3, -1.6e-3, 2e-21);
+  const ContactKinematics k = contact_kinematics(scene.model, u, omega);
+  EXPECT_TRUE(std::isfinite(k.slip) && k.t_hat.allFinite()) << k.slip;
+  EXPECT_NEAR(k.slip, 1.0, 1e-9);
+  EXPECT_NEAR(k.t_hat.norm(), 1.0, 1e-12);
+}
+
 }  // namespace
