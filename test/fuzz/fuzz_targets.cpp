@@ -366,7 +366,7 @@ std::string command_round(CommandRun& run, const Command& c, bool queued, double
   bool accepted = false;
   std::string bad = run.submit(c, accepted);
   if (!bad.empty() || queued) return bad;
-  const bool running = run.sim.fault() == ContactFault::none;
+  const bool running = !run.sim.stopped();  // a fault or an end state (at_rest, lying_flat): nothing is applied
   bad = run.advance(t_end);
   if (bad.empty() && accepted && running) bad = check_applied(c, run.sim.model());
   return bad;
