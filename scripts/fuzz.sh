@@ -5,7 +5,8 @@
 # findings. A finding (crash-*, timeout-*, oom-*, leak-*) lands in $TOP_SIM_BUILD-fuzz/fuzz/<target>/findings/;
 # nothing is written into test/fuzz/corpus (add a fixed finding there by hand, named finding-*).
 #   usage: scripts/fuzz.sh [seconds per target, default 60] [target ...]   (targets: scene_loader command step)
-#   environment: TOP_SIM_FUZZ_TIMEOUT (s per input, default 30), TOP_SIM_FUZZ_RSS_MB (default 2048)
+#   environment: TOP_SIM_FUZZ_TIMEOUT (s per input, default 30), TOP_SIM_FUZZ_RSS_MB (default 2048),
+#   TOP_SIM_FUZZ_NICE (the fuzzers' niceness, default 19; at 19 other jobs' compilers starve them on a busy machine)
 # Exit status: 0 when no target found anything, 1 when one did, 2 for a bad argument or a failed build.
 set -euo pipefail
 source "$(dirname "$0")/lib.sh"
@@ -19,6 +20,7 @@ build=$TOP_SIM_BUILD-fuzz
 # Wall-clock, and nice 19 on a shared machine: the slowest inputs take ~2 s alone, 13 s were seen under load.
 timeout_per_input=${TOP_SIM_FUZZ_TIMEOUT:-30}
 rss_mb=${TOP_SIM_FUZZ_RSS_MB:-2048}
+niceness=${TOP_SIM_FUZZ_NICE:-19}
 export ASAN_OPTIONS=${ASAN_OPTIONS:-abort_on_error=1:detect_leaks=1}
 export UBSAN_OPTIONS=${UBSAN_OPTIONS:-print_stacktrace=1:halt_on_error=1}
 command -v llvm-symbolizer >/dev/null 2>&1 && export ASAN_SYMBOLIZER_PATH=$(command -v llvm-symbolizer)
@@ -43,7 +45,7 @@ run_target() {
   [ -f "$TOP_SIM_REPO/test/fuzz/$name.dict" ] && extra+=("-dict=$TOP_SIM_REPO/test/fuzz/$name.dict")
   top_sim_log "fuzzing $name for $seconds s (log: $work/log.txt)"
   local start=$SECONDS
-  nice -n 19 "$build/bin/fuzz_$name" "$work/corpus" "${extra[@]}" -max_total_time="$seconds" \
+  nice -n "$niceness" "$build/bin/fuzz_$name" "$work/corpus" "${extra[@]}" -max_total_time="$seconds" \
     -timeout="$timeout_per_input" -rss_limit_mb="$rss_mb" -max_len=4096 -print_final_stats=1 \
     -artifact_prefix="$work/findings/" >"$work/log.txt" 2>&1 || true
   echo $((SECONDS - start)) >"$work/seconds"   # a finding stops the target early

@@ -91,7 +91,9 @@ bool flight_in_closed_form(const Model& model) {
   const Top& top = model.top;
   const bool finite_decay = !top.has_rotor || top.rotor.coupling == 0.0 ||
                             (top.rotor.inertia_axial > 0.0 && shell_axial_inertia(top) > 0.0);
-  return model.kind == ModelKind::full && finite_decay && model.plane.g_plane.z() < 0.0 && !has_shapes(model);
+  // Air acts in flight too (drag and spin drag, physics.md section 12): then F != 0 and the flight is stepped.
+  return model.kind == ModelKind::full && finite_decay && model.plane.g_plane.z() < 0.0 && !has_shapes(model) &&
+         !model.air.active();
 }
 
 FlightMotion flight_motion(const Model& model, const StateVector& y, double t) {

@@ -24,9 +24,12 @@ struct PatchLaw {
                                                  double speed_sum) {
   const double v_eps = model.regularization_speed;
   const double wy = lever * omega_n, pivot = std::abs(wy), w2 = slip_speed * slip_speed + wy * wy;
-  const double inverse_w = 1.0 / std::sqrt(w2 + v_eps * v_eps);
+  // A finite lever * omega_n beyond 1e154 (a patch radius of 1e180 m) squares to inf: then |w| by hypot.
+  const bool square = std::isfinite(w2);
+  const double w = square ? std::sqrt(w2) : std::hypot(slip_speed, wy);
+  const double inverse_w = square ? 1.0 / std::sqrt(w2 + v_eps * v_eps) : 1.0 / std::hypot(w, v_eps);
   PatchLaw law;
-  law.slip = std::sqrt(w2) / (speed_sum + pivot);
+  law.slip = w / (speed_sum + pivot);
   law.mu = friction_coefficient(model.friction, law.slip);
   const FiniteContact& fc = model.finite_contact;
   const DrillingFactors k = fc.law == DrillingLaw::exact
@@ -34,7 +37,7 @@ struct PatchLaw {
                                 : DrillingFactors{};
   law.force_factor_per_speed = k.force * inverse_w;
   law.force_per_speed = law.mu * law.force_factor_per_speed;
-  law.drilling = -law.mu * lever * k.torque * wy * inverse_w;
+  law.drilling = square ? -law.mu * lever * k.torque * wy * inverse_w : -law.mu * lever * k.torque * (wy * inverse_w);
   return law;
 }
 

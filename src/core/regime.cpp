@@ -7,6 +7,8 @@
 
 #include "top_sim/shape_motion.hpp"
 
+#include "top_sim/contact.hpp"
+
 namespace top_sim {
 
 const char* to_string(Regime r) {
@@ -74,8 +76,9 @@ RegimeIndicators regime_indicators(const Model& model, ContactMode mode, const S
   const double denom = an * an + cn * cn;
   ind.nutation_rate = denom > 0.0 ? (cn * an_dot - an * cn_dot) / denom : 0.0;
 
-  ind.acceleration = dyn.a_cm.norm();
-  ind.speed = (velocity3(y) + w.cross(top.com_offset * f_hat)).norm();
+  // safe_norm (contact.hpp): a finite a_cm of 1e161 m/s^2 (an air drag of 1e163 N s/m) squared to inf in norm().
+  ind.acceleration = safe_norm(dyn.a_cm);
+  ind.speed = safe_norm(velocity3(y) + w.cross(top.com_offset * f_hat));
 
   ind.runaway = !st.exists || (st.slip_unstable >= 0.0 && dyn.contact.slip > st.slip_unstable);
   ind.tippe = top.com_offset < 0.0;

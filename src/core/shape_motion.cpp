@@ -33,10 +33,10 @@ double slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const 
   const double v_eps = model.regularization_speed;
   const Eigen::Vector3d v_c = v_cm + w.cross(p.r), u = v_cm + p.r_rate, rolling = p.r_rate - w.cross(p.r);
   out.v_t = Eigen::Vector3d(v_c.x(), v_c.y(), 0.0);
-  const double vt = out.v_t.norm();
+  const double vt = safe_norm(out.v_t);
   const double speed_sum = std::hypot(u.x(), u.y()) + std::hypot(rolling.x(), rolling.y()) + v_eps;
   out.slip = vt / speed_sum;
-  t_hat = out.v_t / std::sqrt(vt * vt + v_eps * v_eps);
+  t_hat = out.v_t / regularized_norm(vt, v_eps);
   return speed_sum;
 }
 

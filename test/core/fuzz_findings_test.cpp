@@ -5,7 +5,10 @@
 #include <cstdint>
 #include <string>
 
+#include "../../src/core/patch_law.hpp"
 #include "test_util.hpp"
+#include "top_sim/dynamics.hpp"
+#include "top_sim/regime.hpp"
 
 namespace {
 
@@ -103,6 +106,65 @@ TEST(FuzzFindings, SceneErrorShowsNulCharactersEscaped) {
     const std::string message = e.what();
     EXPECT_NE(message.find("a\\x00b: unknown key"), std::string::npos) << message;
   }
+}
+
+// Step input with air drag 1.1e163 N s/m (and command's 1e300): the drag tipped the top off the plane, and the
+// closed-form flight (physics.md, "F = 0") ignored the air: the top fell freely, 4.9 um into the plane in 1 ms, with no
+// fault. Air acts in flight (section 12): such a flight is stepped, and the drag slows it and dissipates.
+TEST(FuzzFindings, AirActsInFlight) {
+  const std::string top = "top: aluminium\nfriction: pmma\nplane: {inclination: 0.1}\n"
+                          "initial: {tilt: 0.1, spin: 200, gap: 0.01, velocity: [1.0, 0.0]}\n";
+  Simulator still(scene_from(top)), windy(scene_from(top + "air: {drag: 0.05, spin_drag: 1.0e-6}\n"));
+  for (Simulator* sim : {&still, &windy}) {
+    ASSERT_TRUE(sim->advance_to(0.01));
+    ASSERT_EQ(sim->contact_mode(), ContactMode::flight);  // it falls 0.5 g t^2 = 0.5 mm of its 10 mm
+  }
+  const Snapshot a = still.snapshot(), b = windy.snapshot();
+  EXPECT_EQ(a.dissipated_work, 0.0);
+  EXPECT_GT(b.dissipated_work, 0.0);  // exactly 0 before the fix
+  EXPECT_LT(b.com_velocity.norm(), a.com_velocity.norm());
+  EXPECT_LT(std::abs(b.energy_balance_residual), 1e-6);
+}
+
+// Command input with air drag 1e300 N s/m: a_cm of 1e299 m/s^2 is finite, but norm() squared it to inf, so the
+// snapshot's acceleration indicator was inf without a fault (the overflow guard runs at regime points only).
+TEST(FuzzFindings, IndicatorsOfAFiniteHugeAccelerationAreFinite) {
+  const Scene scene = scene_from("top: aluminium\nfriction: pmma\n");
+  const StateVector y = initial_state(scene);
+  Dynamics dyn;
+  evaluate_dynamics(scene.model, ContactMode::slipping, y, dyn);
+  dyn.a_cm = Eigen::Vector3d(1e299, -1e299, 0.0);
+  const RegimeIndicators ind = regime_indicators(scene.model, y, dyn, stationary_state(scene.model, 200.0));
+  EXPECT_DOUBLE_EQ(ind.acceleration, std::sqrt(2.0) * 1e299);
+}
+
+// Command input with a patch radius of 2.8e180 m on the default scene under the auto model: lever * omega_n = 5e182
+// m/s squared to inf in the patch law, so the snapshot's slip was inf without a fault at t = 0.1 ms. |w| falls back to
+// hypot when the square overflows (bit-identical otherwise); the run now ends in a numerical fault.
+TEST(FuzzFindings, PatchOfAHugeRadiusHasAFiniteSlip) {
+  const Scene scene = scene_from("top: aluminium\nfriction: pmma\nmodel: {kind: auto}\n");
+  const PatchLaw law = patch_law(scene.model, 2.77e180, 1e-3, 200.0, 1e-3);
+  EXPECT_NEAR(law.slip, 1.0, 1e-12);
+  EXPECT_TRUE(std::isfinite(law.mu) && std::isfinite(law.force_per_speed) && std::isfinite(law.drilling));
+  Simulator sim(scene);
+  Command c;
+  c.patch_radius = 2.7744062535996355e180;
+  ASSERT_EQ(sim.submit(c), "");
+  sim.advance_to(1e-4);
+  if (sim.fault() == ContactFault::none) EXPECT_EQ(top_sim_test::nonfinite_fields(sim.snapshot()), "");
+}
+
+// Step input: the default top made one sphere of radius 1e300 m at offset pi, spin 0: v_t (1.6e297 m/s, the sphere's
+// rolling) was finite but norm() squared it to inf, so the slip was inf without a fault at t = 0.1 ms. The contact's
+// |v_t| and friction direction no longer overflow (safe_norm, regularized_norm in contact.hpp).
+TEST(FuzzFindings, TipSphereOfAHugeRadiusHasAFiniteSlip) {
+  Scene scene = scene_from("top: aluminium\nfriction: pmma\n");
+  scene.model.top.tip_radius = 1e300;
+  const Eigen::Vector3d u(-4.9e-3, -4.9e-3, 0.0), omega(1.6e-3, -1.6e-3, 2e-21);
+  const ContactKinematics k = contact_kinematics(scene.model, u, omega);
+  EXPECT_TRUE(std::isfinite(k.slip) && k.t_hat.allFinite()) << k.slip;
+  EXPECT_NEAR(k.slip, 1.0, 1e-9);
+  EXPECT_NEAR(k.t_hat.norm(), 1.0, 1e-12);
 }
 
 }  // namespace

@@ -41,6 +41,17 @@ void replay(const std::string& name, Target target) {
 TEST(FuzzSeeds, SceneSeedsAreRefusedWithAMessageOrRunFiniteOrToANamedFault) {
   replay("scene_loader", top_sim::fuzz::scene_loader);
 }
+// The command and step targets start from every shipped scene: a scene added to config/scenes must join their list.
+TEST(FuzzSeeds, CommandAndStepTargetsDrawFromEveryShippedScene) {
+  const std::vector<std::string> listed = top_sim::fuzz::scene_files();
+  for (const auto& entry : fs::directory_iterator(fs::path(TOP_SIM_FUZZ_CONFIG_DIR) / "scenes")) {
+    if (entry.path().extension() != ".yaml") continue;
+    const std::string name = entry.path().stem().string();
+    EXPECT_NE(std::find(listed.begin(), listed.end(), name), listed.end())
+        << name << ".yaml is not in kSceneFiles of test/fuzz/fuzz_targets.cpp";
+  }
+}
+
 TEST(FuzzSeeds, CommandSeedsAreAppliedAsValidatedOrRefusedWithoutEffect) { replay("command", top_sim::fuzz::command); }
 TEST(FuzzSeeds, StepSeedsStepToAFiniteStateOrANamedFault) { replay("step", top_sim::fuzz::step); }
 

@@ -154,13 +154,13 @@ std::string advance_checked(Simulator& sim, double t_end) {
 }
 
 // A scene the loader admitted: a finite initial state, and a Simulator that runs it briefly to an admissible end.
-std::string run_scene(const Scene& scene) {
+std::string run_scene(const Scene& scene, double horizon) {
   const StateVector y0 = initial_state(scene);
   if (!all_finite(y0)) return "the loader admitted a non-finite initial state " + state_text(y0);
   try {
     Simulator sim(scene);
     std::string bad = check_simulator(sim, 0.0, 0.0);
-    if (bad.empty()) bad = advance_checked(sim, std::min(kMaxSimulatedTime, scene.duration));
+    if (bad.empty()) bad = advance_checked(sim, std::min(horizon, scene.duration));
     return bad.empty() ? "" : "running the scene: " + bad;
   } catch (const std::exception& e) {
     return "the simulator threw " + type_name(e) + ": " + e.what();
@@ -175,7 +175,7 @@ std::string check_scene_error(const SceneError& e) {
 }
 
 // parse_scene's outcome: "" for a SceneError with a message or a scene that runs; else the broken invariant.
-std::string parse_and_run(const YAML::Node& root, const std::string& source) {
+std::string parse_and_run(const YAML::Node& root, const std::string& source, double horizon = kMaxSimulatedTime) {
   Scene scene;
   try {
     scene = parse_scene(root, source, config_dir());
@@ -187,22 +187,68 @@ std::string parse_and_run(const YAML::Node& root, const std::string& source) {
   } catch (...) {
     return "parse_scene threw something that is not a std::exception";
   }
-  return run_scene(scene);
+  return run_scene(scene, horizon);
 }
 
 // ---- the scenes the command and step targets start from ----------------------------------------------------
 
-// Config scenes as YAML trees: a plain top, a gyrostat, Coulomb friction, a hopping top, a ball, and the default
-// scene with the adiabatic model and with the static normal force.
+// `top:` and `friction:` given by file name become the file's mapping, so the step target can change their keys.
+void inline_named(YAML::Node root, const char* key, const char* folder) {
+  if (root[key] && root[key].IsScalar())
+    root[key] = YAML::LoadFile(config_dir() + "/" + folder + "/" + root[key].Scalar() + ".yaml");
+}
+
+// The tilt at which a two-shape body stands on both shapes (h_0(c) = h_1(c), physics.md 13.4), shapes[1] not below
+// the plane: a start on the pair solve's stuck and slipping pairs instead of a fall onto them.
+double tilt_on_both(const ShapeSet& shapes) {
+  auto below = [&shapes](double c) { return shape_height(shapes.shape[0], c) - shape_height(shapes.shape[1], c); };
+  double hi = 1.0;  // scan down from upright for the first sign change, then bisect it
+  for (double lo = 0.99; lo >= -1.0; lo -= 0.01, hi -= 0.01) {
+    if ((below(lo) > 0.0) == (below(hi) > 0.0)) continue;
+    for (int i = 0; i < 200; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      ((below(mid) > 0.0) == (below(lo) > 0.0) ? lo : hi) = mid;
+    }
+    return std::acos(below(lo) <= 0.0 ? lo : hi);
+  }
+  return 0.0;
+}
+
+// Every scene of config/scenes (kSceneNames; the first seven in the order of the first corpus, which names them by
+// index), then variants: the default with the adiabatic model, the static normal force and the auto model, the
+// Hertz patch of spin_down under the auto model (a handover on a patch), and the two-shape tops started on both.
+const char* const kSceneFiles[] = {
+    "default", "gyro_reversal", "coulomb", "hopping", "ball", nullptr, nullptr, "euler_disk", "fig2_spin100",
+    "fig2_spin200", "fig2_spin400", "fig5_linearized", "frictionless", "phase_reversed200", "phase_spin100",
+    "phase_spin200", "phase_spin400", "reversed_spin", "spin_down", "supercritical", "tippe_top",
+    "tippe_top_contensou", "tippe_top_rolling", "tippe_top_stem", "tippe_top_tumbling", "top_life", "upright"};
+
 const std::vector<YAML::Node>& base_nodes() {
   static const std::vector<YAML::Node> nodes = [] {
     std::vector<YAML::Node> out;
-    for (const char* name : {"default", "gyro_reversal", "coulomb", "hopping", "ball"})
-      out.push_back(YAML::LoadFile(config_dir() + "/scenes/" + name + ".yaml"));
-    out.push_back(YAML::Clone(out[0]));
-    out.back()["model"]["kind"] = "adiabatic";
-    out.push_back(YAML::Clone(out[0]));
-    out.back()["model"]["normal_force"] = "static";
+    auto file = [](const char* name) {
+      YAML::Node n = YAML::LoadFile(config_dir() + "/scenes/" + name + ".yaml");
+      inline_named(n, "top", "tops");
+      inline_named(n, "friction", "planes");
+      return n;
+    };
+    auto variant = [&out, &file](const char* name, const char* section, const char* key, const char* value) {
+      out.push_back(file(name));
+      out.back()[section][key] = value;
+    };
+    for (const char* name : kSceneFiles) {
+      if (name) out.push_back(file(name));
+      else if (out.size() == 5) variant("default", "model", "kind", "adiabatic");
+      else variant("default", "model", "normal_force", "static");
+    }
+    variant("default", "model", "kind", "auto");
+    variant("spin_down", "model", "kind", "auto");
+    out.back()["model"]["auto_tolerance"] = 1.0e-4;
+    for (const char* name : {"top_life", "tippe_top_stem"}) {
+      out.push_back(file(name));
+      const Scene scene = parse_scene(out.back(), name, config_dir());
+      out.back()["initial"]["tilt"] = tilt_on_both(scene.model.shapes);
+    }
     return out;
   }();
   return nodes;
@@ -255,6 +301,13 @@ bool read_command(Bytes& in, Command& c) {
   }
   if (set & 0x20) c.static_friction = in.number();
   if (set & 0x40) c.restitution = in.number();
+  if (set & 0x80) {  // a second flag byte: the finite contact's and the air's fields (physics.md section 12)
+    const std::uint8_t more = in.byte();
+    if (more & 0x01) c.patch_radius = in.number();
+    if (more & 0x02) c.rolling_resistance = in.number();
+    if (more & 0x04) c.spin_drag = in.number();
+    if (more & 0x08) c.drag = in.number();
+  }
   return true;
 }
 
@@ -267,6 +320,12 @@ std::string check_applied(const Command& c, const Model& m) {
     return "static_friction not applied";
   if (c.restitution && !same(m.contact.restitution, *c.restitution)) return "restitution not applied";
   if (c.rotor_coupling && !same(m.top.rotor.coupling, *c.rotor_coupling)) return "rotor_coupling not applied";
+  if (c.patch_radius && (m.finite_contact.hertz || !same(m.finite_contact.patch_radius, *c.patch_radius)))
+    return "patch_radius not applied";
+  if (c.rolling_resistance && !same(m.finite_contact.rolling_resistance, *c.rolling_resistance))
+    return "rolling_resistance not applied";
+  if (c.spin_drag && !same(m.air.spin_drag, *c.spin_drag)) return "spin_drag not applied";
+  if (c.drag && !same(m.air.drag, *c.drag)) return "drag not applied";
   return "";
 }
 
@@ -307,7 +366,7 @@ std::string command_round(CommandRun& run, const Command& c, bool queued, double
   bool accepted = false;
   std::string bad = run.submit(c, accepted);
   if (!bad.empty() || queued) return bad;
-  const bool running = run.sim.fault() == ContactFault::none;
+  const bool running = !run.sim.stopped();  // a fault or an end state (at_rest, lying_flat): nothing is applied
   bad = run.advance(t_end);
   if (bad.empty() && accepted && running) bad = check_applied(c, run.sim.model());
   return bad;
@@ -315,10 +374,12 @@ std::string command_round(CommandRun& run, const Command& c, bool queued, double
 
 // ---- step target ------------------------------------------------------------------------------------------
 
-const char* const kMethods[] = {"euler", "semi_implicit_euler", "rk4", "dopri5", "rosenbrock4", "switching"};
+const char* const kMethods[] = {"euler",       "semi_implicit_euler", "rk4",           "dopri5",
+                                "rosenbrock4", "switching",           "implicit_midpoint", "fitted_midpoint"};
 
-// Overwrites the keys of initial:, top.rotor.spin and integrator: that the two flag bytes select.
-void write_state(Bytes& in, YAML::Node root) {
+// Overwrites the keys of initial:, top.rotor.spin and integrator: that the two flag bytes select; flag 0x8000 adds
+// two more flag bytes for the keys of bodies of shapes, the patch, the air and the auto model (write_contact).
+unsigned write_state(Bytes& in, YAML::Node root) {
   const unsigned set = in.byte() | (static_cast<unsigned>(in.byte()) << 8);
   YAML::Node ic = root["initial"];
   auto pair = [&in] { return std::vector<double>{in.number(), in.number()}; };
@@ -338,6 +399,68 @@ void write_state(Bytes& in, YAML::Node root) {
   if (set & 0x1000) integrator["rtol"] = in.number();
   if (set & 0x2000) integrator["atol"] = in.number();
   if (set & 0x4000) integrator["max_dt"] = in.number();
+  return set & 0x8000 ? in.byte() | (static_cast<unsigned>(in.byte()) << 8) : 0u;
+}
+
+const char* const kModelKinds[] = {"full", "adiabatic", "auto"};
+
+// top.shapes anew: 1-3 spheres or rims (the loader takes 1-4, the simulator 1-2), each offset and radius fuzzed.
+void write_shapes(Bytes& in, YAML::Node top) {
+  top.remove("tip_radius");
+  top.remove("com_offset");
+  YAML::Node list(YAML::NodeType::Sequence);
+  const int n = 1 + in.byte() % 3;
+  for (int i = 0; i < n; ++i) {
+    YAML::Node shape, item;
+    const bool rim = in.byte() % 2;
+    shape["offset"] = in.number();
+    shape["radius"] = in.number();
+    item[rim ? "rim" : "sphere"] = shape;
+    list.push_back(item);
+  }
+  top["shapes"] = list;
+}
+
+// One key (offset or radius) of one of the body's shapes; a top without shapes is left as it is.
+void write_shape_key(Bytes& in, YAML::Node top, const char* key) {
+  const std::uint8_t pick = in.byte();
+  const double value = in.number();
+  YAML::Node list = top["shapes"];
+  if (!list.IsSequence() || list.size() == 0) return;
+  YAML::Node item = list[pick % list.size()];
+  if (item.IsMap() && item.size() == 1) item.begin()->second[key] = value;
+}
+
+// The keys of physics.md sections 12 and 13 that the flags of write_state's third and fourth bytes select;
+// returns the simulated time to run (flag 0x4000: 1 ms to 10 s, still at most kMaxSteps steps).
+double write_contact(Bytes& in, YAML::Node root, unsigned set) {
+  YAML::Node top = root["top"], contact = root["contact"], air = root["air"], model = root["model"];
+  if (set & 0x0001) write_shapes(in, top);
+  if (set & 0x0002) write_shape_key(in, top, "offset");
+  if (set & 0x0004) write_shape_key(in, top, "radius");
+  if (set & 0x0008) {
+    if (in.byte() % 2) contact["patch_radius"] = in.number();
+    else contact["patch_radius"] = "hertz";
+  }
+  if (set & 0x0010) contact["patch_pressure"] = in.byte() % 2 ? "uniform" : "hertz";
+  if (set & 0x0020) contact["drilling_law"] = in.byte() % 2 ? "elliptic" : "exact";
+  if (set & 0x0040) contact["rolling_resistance"] = in.number();
+  if (set & 0x0080) air["spin_drag"] = in.number();
+  if (set & 0x0100) air["drag"] = in.number();
+  if (set & 0x0200) model["kind"] = kModelKinds[in.byte() % std::size(kModelKinds)];
+  if (set & 0x0400) model["auto_tolerance"] = in.number();
+  if (set & 0x0800) {
+    top["young_modulus"] = in.number();
+    top["poisson_ratio"] = in.number();
+  }
+  if (set & 0x1000) contact["restitution"] = in.number();
+  if (set & 0x2000) {
+    top["inertia_axial"] = in.number();
+    top["inertia_transverse"] = in.number();
+  }
+  const double horizon = set & 0x4000 ? kMaxSimulatedTime * std::pow(10.0, in.byte() % 5) : kMaxSimulatedTime;
+  if (set & 0x8000) root["friction"]["static"] = in.number();
+  return horizon;
 }
 
 }  // namespace
@@ -384,8 +507,16 @@ std::string step(const std::uint8_t* data, std::size_t size) {
   Bytes in(data, size);
   const std::vector<YAML::Node>& nodes = base_nodes();
   YAML::Node root = YAML::Clone(nodes[in.byte() % nodes.size()]);
-  write_state(in, root);
-  return parse_and_run(root, "fuzz_step.yaml");
+  const unsigned more = write_state(in, root);
+  const double horizon = write_contact(in, root, more);
+  return parse_and_run(root, "fuzz_step.yaml", horizon);
+}
+
+std::vector<std::string> scene_files() {
+  std::vector<std::string> names;
+  for (const char* name : kSceneFiles)
+    if (name) names.push_back(name);
+  return names;
 }
 
 void require(const char* target, const std::string& verdict) {
