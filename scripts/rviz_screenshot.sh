@@ -2,7 +2,9 @@
 # Renders docs/img/rviz.png: the node and rviz under Xvfb (Mesa software GL), a few seconds of the scene, one
 # screenshot of the rviz window, then a clean shutdown. No display or roscore needed.
 #   scripts/rviz_screenshot.sh [OUT.png]
-# Environment: TOP_SIM_SCENE (default config/scenes/default.yaml), TOP_SIM_SHOT_RTF (real-time factor, default 2),
+# Environment: TOP_SIM_SCENE (a scene file, default config/scenes/default.yaml, or a shipped scene's name, e.g.
+# top_life, passed to the launch as it is), TOP_SIM_SHOT_RTF (real-time factor, default 2; `scene` passes none, so the
+# node uses the scene's view.real_time_factor),
 # TOP_SIM_SHOT_WAIT (wall seconds of streaming before the shot, default 8), TOP_SIM_SHOT_SIZE (default 1280x800),
 # TOP_SIM_SHOT_LAUNCH (launch file of the package, default top_sim.launch; TOP_SIM_SCENE is passed only to that
 # one), TOP_SIM_SHOT_TOPIC (a TopState topic that shows streaming has started, default /top_sim/top_state),
@@ -19,8 +21,12 @@ set -euo pipefail
 source "$(dirname "$0")/lib.sh"
 
 OUT=$(realpath -m "${1:-$TOP_SIM_REPO/docs/img/rviz.png}")
-SCENE=$(realpath -m "${TOP_SIM_SCENE:-$TOP_SIM_REPO/config/scenes/default.yaml}")
+SCENE=${TOP_SIM_SCENE:-$TOP_SIM_REPO/config/scenes/default.yaml}
+# A name (no '/', no .yaml) is a shipped scene the launch finds; a path is made absolute for the node.
+case "$SCENE" in */*|*.yaml) SCENE=$(realpath -m "$SCENE") ;; esac
 RTF=${TOP_SIM_SHOT_RTF:-2}
+RTF_ARG="real_time_factor:=$RTF"
+if [ "$RTF" = scene ]; then RTF_ARG=""; fi
 WAIT=${TOP_SIM_SHOT_WAIT:-8}
 SIZE=${TOP_SIM_SHOT_SIZE:-1280x800}
 LAUNCH=${TOP_SIM_SHOT_LAUNCH:-top_sim.launch}
@@ -34,7 +40,10 @@ for tool in xvfb-run xwininfo; do
   command -v "$tool" >/dev/null 2>&1 || top_sim_die "$tool not found (Debian packages: xvfb, x11-utils)"
 done
 /usr/bin/python3 -c 'from PIL import ImageGrab' 2>/dev/null || top_sim_die "python3 PIL not found (Debian package: python3-pil)"
-[ -f "$SCENE" ] || top_sim_die "scene file $SCENE does not exist"
+case "$SCENE" in
+  /*) [ -f "$SCENE" ] || top_sim_die "scene file $SCENE does not exist" ;;
+  *) [ -f "$TOP_SIM_REPO/config/scenes/$SCENE.yaml" ] || top_sim_die "no shipped scene $SCENE (config/scenes/$SCENE.yaml)" ;;
+esac
 
 # Use the workspace's devel space unless top_sim is already on the ROS package path.
 if ! rospack find top_sim >/dev/null 2>&1; then
@@ -48,12 +57,12 @@ export ROS_MASTER_URI=http://localhost:$PORT
 LOG=$(mktemp -d /tmp/top_sim_shot.XXXXXX)
 top_sim_log "rviz screenshot: $LAUNCH $LAUNCH_ARGS, real_time_factor $RTF, ${WAIT} s; logs in $LOG"
 
-export OUT LAUNCH LAUNCH_ARGS TOPIC RTF WAIT PORT LOG TOP_SIM_REPO SETUP
+export OUT LAUNCH LAUNCH_ARGS TOPIC RTF_ARG WAIT PORT LOG TOP_SIM_REPO SETUP
 # Software GL: Xvfb has no GPU; rviz's OGRE renders through Mesa llvmpipe.
 export LIBGL_ALWAYS_SOFTWARE=1
 xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
   set -m   # job control: the background roslaunch receives SIGINT like from a terminal
-  roslaunch -p "$PORT" top_sim "$LAUNCH" $LAUNCH_ARGS rviz:=true real_time_factor:="$RTF" \
+  roslaunch -p "$PORT" top_sim "$LAUNCH" $LAUNCH_ARGS rviz:=true $RTF_ARG \
     >"$LOG/roslaunch.log" 2>&1 &
   launch=$!
   status=0
@@ -73,6 +82,7 @@ xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
     sleep "$WAIT"
     /usr/bin/python3 "$TOP_SIM_REPO/scripts/grab_window.py" --title RViz --out "$OUT" --timeout 30 || status=$?
     rostopic echo -n 1 "$TOPIC/sim_time" >"$LOG/last_state.txt" 2>&1 || true
+    rostopic echo -n 1 "$TOPIC/regime" >"$LOG/last_regime.txt" 2>&1 || true
   else
     echo "no TopState on $TOPIC within 60 s (see $LOG/roslaunch.log)" >&2
     status=1
@@ -83,5 +93,5 @@ xvfb-run -a -s "-screen 0 ${SIZE}x24" bash -c '
   wait "$launch" 2>/dev/null || true
   exit $status
 '
-top_sim_log "simulated time at the shot: $(head -1 "$LOG/last_state.txt" 2>/dev/null || echo unknown) s"
+top_sim_log "simulated time at the shot: $(head -1 "$LOG/last_state.txt" 2>/dev/null || echo unknown) s, regime $(head -1 "$LOG/last_regime.txt" 2>/dev/null || echo unknown)"
 top_sim_log "wrote $OUT"

@@ -20,6 +20,7 @@
 #include <ros/package.h>
 #include <ros/param.h>
 #include <rviz/properties/property.h>
+#include <rviz/properties/vector_property.h>
 #include <rviz/render_panel.h>
 #include <rviz/view_controller.h>
 #include <rviz/view_manager.h>
@@ -430,15 +431,21 @@ void ControlPanel::apply_view_hint() {
   const std::string node = node_->text().trimmed().toStdString();
   std::string camera;
   double distance = 0.0;
+  double reach = 0.0;
   if (!ros::param::get(node + "/view/camera", camera)) return;
   ros::param::get(node + "/view/distance", distance);
+  ros::param::get(node + "/view/reach", reach);
   view_timer_->stop();
   rviz::ViewController* view = vis_manager_->getViewManager()->getCurrent();
   if (!view || view->getClassId() != "rviz/Orbit") return;  // another camera is the user's choice: it stays
-  const std::optional<OrbitView> pose = orbit_view(camera, distance, view->subProp("Distance")->getValue().toDouble());
+  const double now = view->subProp("Distance")->getValue().toDouble();
+  const std::optional<OrbitView> pose = orbit_view(camera, distance, now, reach);
   if (!pose) return;
   view->subProp("Pitch")->setValue(pose->pitch);
   view->subProp("Distance")->setValue(pose->distance);
+  // Over the top, not beside it (the shipped config looks 5 cm to its side), at the height that shows the label.
+  if (auto* focal = dynamic_cast<rviz::VectorProperty*>(view->subProp("Focal Point")))
+    focal->setVector(Ogre::Vector3(0.0f, 0.0f, static_cast<float>(pose->focal_z)));
 }
 
 void ControlPanel::load(const rviz::Config& config) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <optional>
 
+#include "control_layout.hpp"
 #include "conversions.hpp"
 #include "markers.hpp"
 #include "top_sim/command.hpp"
@@ -253,11 +254,21 @@ std::string spin_from_handle(double spin_now, double drag, double& spin) {
   return top_sim::validate(c, top_sim::Model());
 }
 
-std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance) {
+double label_top(double reach) {
+  constexpr double kTwoLines = 0.025;  // [m] two 8 mm lines and their spacing (markers.cpp's kLabelHeight)
+  return std::max(reach + 0.02, top_sim_ros::control_layout::kTop) + kTwoLines;
+}
+
+std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance,
+                                    double reach) {
   OrbitView v;
   v.distance = distance > 0.0 ? distance : current_distance;
-  if (camera == "low") v.pitch = 0.12;  // a tippe top's stem and a disc's edge show from the side
-  else if (camera == "top") v.pitch = 1.45;
+  if (camera == "low") {  // a tippe top's stem and a disc's edge show from the side, the label over them too
+    v.pitch = 0.12;
+    const double half_band = 0.55 * label_top(reach);  // half the plane-to-label band and a 10 % margin
+    v.focal_z = 0.5 * label_top(reach);
+    v.distance = std::max(v.distance, half_band / std::tan(0.5 * kFieldOfView));
+  } else if (camera == "top") v.pitch = 1.45;
   else if (camera == "follow") v.pitch = 0.55;  // rviz/top_sim.rviz's
   else return std::nullopt;
   return v;

@@ -103,10 +103,18 @@ std::string spin_from_handle(double spin_now, double drag, double& spin);
 // rviz's orbit camera for a scene's view hint (docs/interfaces.md, `view`), which the node sets as ~view/camera and
 // ~view/distance: `low` looks from the side just above the plane, `top` from above, `follow` as the shipped config
 // does; a distance of 0 keeps `current_distance`. None for the camera "unset" (or a word the panel does not know).
+// `low` also aims halfway up from the plane to the label over a body reaching `reach` (~view/reach) and backs off
+// until that whole band is in the vertical field of view: a close side view must not cut the label off.
 struct OrbitView {
   double pitch = 0.0;     // [rad] above the plane
   double distance = 0.0;  // [m] from the follow frame
+  double focal_z = kShippedFocalZ;  // [m] the point looked at, above the follow frame
+  static constexpr double kShippedFocalZ = 0.012;  // rviz/top_sim.rviz's
 };
-std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance);
+constexpr double kFieldOfView = 0.785398;  // [rad] vertical, rviz/top_sim.rviz's
+// [m] the top of the label above the contact point of a body reaching `reach` (markers.cpp places it, two lines).
+double label_top(double reach);
+std::optional<OrbitView> orbit_view(const std::string& camera, double distance, double current_distance,
+                                    double reach = 0.0);
 
 }  // namespace top_sim_rviz

@@ -4,6 +4,7 @@
 
 #include <cmath>
 
+#include "control_layout.hpp"
 #include "panel_logic.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/friction.hpp"
@@ -191,4 +192,19 @@ TEST(PanelLogic, ViewHintBecomesAnOrbitCamera) {
   EXPECT_EQ(orbit_view("follow", 0.0, 0.3)->pitch, 0.55);
   EXPECT_FALSE(orbit_view("unset", 0.2, 0.27));
   EXPECT_FALSE(orbit_view("side", 0.2, 0.27));
+}
+
+// The low camera close to a small body (tippe_top_stem's hint: 0.15 m) keeps the plane and the label over the body
+// and its controls inside the vertical field of view: at 0.15 m looking 12 mm up the label was above the view.
+TEST(PanelLogic, LowViewShowsTheLabel) {
+  using top_sim_rviz::orbit_view;
+  for (const double reach : {0.0, 0.036, 0.08, 0.2}) {
+    const auto v = orbit_view("low", 0.15, 0.27, reach);
+    ASSERT_TRUE(v);
+    const double half = v->distance * std::tan(0.5 * top_sim_rviz::kFieldOfView);  // seen above and below focal_z
+    EXPECT_LE(v->focal_z + 0.0 - half, 0.0) << "plane cut off, reach " << reach;
+    EXPECT_GE(v->focal_z + half, top_sim_rviz::label_top(reach)) << "label cut off, reach " << reach;
+    EXPECT_GE(v->distance, 0.15);
+  }
+  EXPECT_GT(top_sim_rviz::label_top(0.0), top_sim_ros::control_layout::kTop);
 }
