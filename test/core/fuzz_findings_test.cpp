@@ -134,7 +134,7 @@ TEST(FuzzFindings, IndicatorsOfAFiniteHugeAccelerationAreFinite) {
   Dynamics dyn;
   evaluate_dynamics(scene.model, ContactMode::slipping, y, dyn);
   dyn.a_cm = Eigen::Vector3d(1e299, -1e299, 0.0);
-  const RegimeIndicators ind = regime_indicators(scene.model, y, dyn, stationary_state(scene.model, 200.0));
+  const RegimeIndicators ind = regime_indicators(scene.model, ContactMode::slipping, y, dyn, stationary_state(scene.model, 200.0));
   EXPECT_DOUBLE_EQ(ind.acceleration, std::sqrt(2.0) * 1e299);
 }
 
