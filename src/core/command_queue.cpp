@@ -2,11 +2,13 @@
 #include <limits>
 
 #include "simulator_impl.hpp"
+#include "top_sim/shape_motion.hpp"
 
 namespace top_sim {
 
 std::string SimulatorImpl::submit(const Command& command) {
   std::lock_guard<std::mutex> lock(pending_mutex_);  // the owner writes model_ only under it
+  if (!stopped_refusal_.empty()) return stopped_refusal_;
   const std::string error = validate(command, model_);
   if (!error.empty()) return error;
   pending_.push_back(command);
@@ -48,6 +50,12 @@ void SimulatorImpl::apply_pending() {
 // decides again (a flight stays a flight).
 void SimulatorImpl::reclose_contact(StateVector& y) {
   if (mode_ == ContactMode::flight || !has_contact_modes(model_)) return;
+  // Two contacts, one now pulling (N_k < 0: a spin flung the body up on it): it lets go at once, as after a second
+  // touchdown. Its lift-off event could not: restart() arms the lift margin only once it has been positive.
+  if (has_shapes(model_) && two_touching(model_.shapes)) {
+    const TwoShapeMotion m = touching_pair_motion(model_, y);
+    if (m.normal_force[0] < 0.0 || m.normal_force[1] < 0.0) return let_go_of_one(y);
+  }
   const ContactMode before = mode_;
   const double e0 = mechanical_energy(model_, y);
   const ClosingResult c = close_contact(model_, y);

@@ -146,6 +146,7 @@ void SimulatorImpl::reset() {
     pending_.clear();
     has_pending_.store(false, std::memory_order_relaxed);
     model_ = scene_.model;
+    stopped_refusal_.clear();
   }
   StateVector y = initial_state(scene_);
   t_origin_ = t_;
@@ -232,12 +233,20 @@ void SimulatorImpl::fail(ContactFault fault, const std::string& message) {
   if (stopped()) return;
   fault_ = fault;
   fault_message_ = message;
+  refuse_commands(std::string("the run stopped on the contact fault ") + to_string(fault));
 }
 
 void SimulatorImpl::end(EndState state, double margin) {
   if (stopped()) return;
   end_state_ = state;
   end_message_ = describe(state, margin, t_);
+  refuse_commands(std::string("the run ended in the end state ") + to_string(state));
+}
+
+// A stopped run's time no longer moves: a command would be queued and never applied, so submit() refuses it.
+void SimulatorImpl::refuse_commands(const std::string& why) {
+  std::lock_guard<std::mutex> lock(pending_mutex_);
+  stopped_refusal_ = why + " at t = " + format_number(t_) + " s: reset it before commanding it (nothing applied)";
 }
 
 // The user's surface: each call is the stage's.

@@ -119,6 +119,7 @@ class SimulatorImpl {
   // command_queue.cpp: commands from any thread, and the scene's scripted events.
   std::vector<Command> pending_;
   mutable std::mutex pending_mutex_;  // guards pending_, and the owner's writes to model_ (submit() reads it)
+  std::string stopped_refusal_;      // why submit() refuses after an end or a fault; empty while running
   std::size_t next_event_ = 0;
 
   // event_location.cpp: the end of the last scan when it fell inside a step (a tick's end): its state and energy
@@ -186,6 +187,7 @@ class SimulatorImpl {
   void restart(const StateVector& y, double t, bool rebase_energy);
   void fail(ContactFault fault, const std::string& message);
   void end(EndState state, double margin);  // stops the run at a named end state (message in end_message_)
+  void refuse_commands(const std::string& why);  // from now on submit() answers why
   bool stopped() const { return fault_ != ContactFault::none || end_state_ != EndState::none; }
   void stop_at_step_start(const std::string& detail);
   enum class Reach { stop, fault, out_of_budget };

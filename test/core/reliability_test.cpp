@@ -120,6 +120,29 @@ TEST(Reliability, EnergyResidualBoundIsASceneKey) {
   EXPECT_THROW(scene_from(unstable_scene("{}", "200.0", "{method: euler, max_energy_residual: 0}")), SceneError);
 }
 
+// A stopped run (a fault or an end) no longer moves: a command would be queued and never applied, so it is refused
+// with the reason; after a reset the same command is accepted again.
+TEST(Reliability, StoppedRunRefusesCommandsUntilReset) {
+  Simulator faulted(scene_from(unstable_scene("{}", "200.0", "{method: euler, dt: 0.01}")));
+  Simulator ended(scene_from(
+      unstable_scene("{}", "200.0", "{method: euler, dt: 0.01, max_energy_residual: 1.0e300}")));
+  Command spin;
+  spin.spin = 300.0;
+  for (Simulator* sim : {&faulted, &ended}) {
+    sim->advance_to(0.5);
+    ASSERT_TRUE(sim->stopped());
+    const double t = sim->time();
+    const std::string why = sim->submit(spin);
+    const std::string stop = sim == &faulted ? "contact fault numerical" : "end state fallen";
+    EXPECT_NE(why.find(stop), std::string::npos) << why;
+    EXPECT_NE(why.find("reset it before commanding it"), std::string::npos) << why;
+    sim->advance_to(1.0);
+    EXPECT_EQ(sim->time(), t);
+    sim->reset();
+    EXPECT_EQ(sim->submit(spin), "");
+  }
+}
+
 }  // namespace
 
 namespace {
