@@ -3,7 +3,7 @@
 on no other (inclination, reset, pause of one top); an unknown or empty name, a field out of range or another top's
 name on a top's own ~NAME/command applies nothing and warns naming the top and the field; ~per_top_topics both ways
 (a node with it false: no own topics; the spawn service asking per top; the default rule by the node's count); the
-batch spawn (copies, a list with scenes, all-or-nothing); a ~per_top_topics that is not a bool stops the node at
+batch spawn (copies, a list with scenes, all-or-nothing); a top stopped by its end refuses commands until a reset; a ~per_top_topics that is not a bool stops the node at
 start. Waits are on messages, never fixed sleeps."""
 import os
 import subprocess
@@ -183,6 +183,18 @@ class TopsCommand(unittest.TestCase):
         for name in ('top', 'd0', 'd1'):
             for bad in (0.21, 0.22, 0.23, 0.24):
                 self.assertNotIn(bad, self.states.values(name, 'alpha'), (name, bad))
+
+    def test_a_stopped_top_refuses_commands_until_reset(self):
+        # Tipped over without spin, it falls past max_tilt within 0.04 s: the end state fallen stops it.
+        falls = 'top: aluminium\nfriction: pmma\ninitial: {start: tilted, tilt: 1.0, spin: 0.0}\n'
+        self.batch(names=['z0'], scenes=[falls])
+        self.assertIsNotNone(self.states.wait(lambda s: 'z0' in s and s['z0'].end_state == 'fallen'), 'z0 never fell')
+        self.pub.publish(command('z0', inclination=0.27))
+        line = self.rosout.wait("top 'z0'", 'end state fallen', 'reset it before commanding it')
+        self.assertIsNotNone(line, 'no warning that the ended top refuses the command')
+        self.pub.publish(command('z0', reset=True, inclination=0.28))  # a reset first: taken, and the field with it
+        self.assertIsNotNone(self.states.wait(lambda s: abs(s['z0'].alpha - 0.28) < 1e-12), 'reset + command not applied')
+        self.assertNotIn(0.27, self.states.values('z0', 'alpha'))
 
     def test_per_top_topics_by_request_and_by_count(self):
         on = self.batch(name='e', copies=2)
