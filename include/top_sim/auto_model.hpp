@@ -33,7 +33,8 @@ constexpr double kReanalysedSpin = 1.0e-2;
 // that state exists, is linearly stable and the bearing drags the spin slowly enough: the full model lags behind
 // the sleeping state by |u*| |spin'| / |spin| T_relax in velocity for as long as the bearing drags (1 / its decay
 // rate c (1/J + 1/I_f')), which must move the contact point by at most model.auto_tolerance.
-Reduction analyse_reduction(const Model& model, const StateVector& y);
+// `geometry` is stationary_geometry(model) (the Simulator holds it; it does not depend on the model's kind).
+Reduction analyse_reduction(const Model& model, const StationaryGeometry& geometry, const StateVector& y);
 
 // Whether r was analysed at about y's spin (within kReanalysedSpin).
 bool reduction_applies(const Reduction& r, const StateVector& y);
@@ -48,6 +49,6 @@ struct Handover {
   Eigen::Vector2d offset = Eigen::Vector2d::Zero();  // the predicted remaining offset of the contact point [m]
   StateVector y{};
 };
-Handover handover(const Model& model, const Reduction& r, const StateVector& y);
+Handover handover(const Model& model, const StationaryGeometry& geometry, const Reduction& r, const StateVector& y);
 
 }  // namespace top_sim

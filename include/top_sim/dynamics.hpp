@@ -59,7 +59,9 @@ double stick_patch_radius(const Model& model, double normal_force);
 // finite contact d lambda / dt = (couple + air_torque) . (f f_hat + R n) (physics.md section 12).
 double jellett(const Model& model, const StateVector& y);
 
-// Full evaluation in `mode`, including the margins of that mode.
+// Full evaluation in `mode`, including the margins of that mode. `cos_max_tilt` = cos(model.top.max_tilt), which
+// a caller evaluating many states of one model (the Simulator's event scans) computes once.
+void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double cos_max_tilt);
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out);
 
 // The contact force of one right-hand side, kept so that the event margins at a step's end can reuse the

@@ -59,13 +59,14 @@ void spinning_down(const Model& model, const StateVector& y, const StationarySta
 
 }  // namespace
 
-void adiabatic_derivative(const Model& model, const StateVector& y, StateVector& dydt) {
+void adiabatic_derivative(const Model& model, const StationaryGeometry& geometry, const StateVector& y,
+                          StateVector& dydt) {
   const Top& top = model.top;
   const Eigen::Vector3d f_hat = figure_axis(y).normalized();
   const double spin = angular_velocity(y).dot(f_hat);
   // u* is linear in the spin for each sign: one solve at unit spin gives u* and du*/d(spin).
   const double sign = spin >= 0.0 ? 1.0 : -1.0;
-  const StationaryState unit = stationary_state(model, sign);
+  const StationaryState unit = stationary_state(model, geometry, sign);
   if (!point_contact(model)) return spinning_down(model, y, unit, spin, dydt);
 
   // Only the bearing changes the shell spin once asleep: I_f' spin' = c nu, J Omega' = -c nu.
@@ -83,13 +84,21 @@ void adiabatic_derivative(const Model& model, const StateVector& y, StateVector&
                       dydt);
 }
 
-void project_to_stationary(const Model& model, StateVector& y) {
+void adiabatic_derivative(const Model& model, const StateVector& y, StateVector& dydt) {
+  adiabatic_derivative(model, stationary_geometry(model), y, dydt);
+}
+
+void project_to_stationary(const Model& model, const StationaryGeometry& geometry, StateVector& y) {
   const double spin = shell_spin(y);
-  const StationaryState st = stationary_state(model, spin);
+  const StationaryState st = stationary_state(model, geometry, spin);
   if (!st.exists) return;
   set_velocity(y, st.velocity);
   set_figure_axis(y, st.f_hat);
   set_angular_velocity(y, st.omega);
+}
+
+void project_to_stationary(const Model& model, StateVector& y) {
+  project_to_stationary(model, stationary_geometry(model), y);
 }
 
 }  // namespace top_sim

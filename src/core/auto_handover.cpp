@@ -10,9 +10,9 @@ namespace top_sim {
 // Hand over at this regime point when the reduction is valid at its spin and the decaying modes would still move
 // the contact point by at most model.auto_tolerance.
 void SimulatorImpl::consider_handover(double t, const StateVector& y) {
-  if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, y);
+  if (!reduction_applies(reduction_, y)) reduction_ = analyse_reduction(model_, stationary_geometry_, y);
   if (!reduction_.valid || !(remaining_offset(reduction_, y).norm() <= model_.automatic.position_tolerance)) return;
-  const Handover h = handover(model_, reduction_, y);
+  const Handover h = handover(model_, stationary_geometry_, reduction_, y);
   handover_due_ = true;
   handover_.t = t;
   handover_.y = h.y;
@@ -58,7 +58,7 @@ bool SimulatorImpl::scan_reduced(double t_end, const StateVector& y1) {
     tk = k == pieces ? t_end : t0 + (t_end - t0) * k / pieces;
     if (k == pieces) yk = y1; else stepper_->state_at(tk, yk);
     if (reduction_applies(reduction_, yk)) continue;
-    reduction_ = analyse_reduction(model_, yk);
+    reduction_ = analyse_reduction(model_, stationary_geometry_, yk);
     if (!reduction_.valid) break;
   }
   skip_cadence(tk);

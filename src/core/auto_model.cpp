@@ -46,13 +46,13 @@ void split_modes(const StabilityResult& s, Reduction& r) {
 
 }  // namespace
 
-Reduction analyse_reduction(const Model& model_in, const StateVector& y) {
+Reduction analyse_reduction(const Model& model_in, const StationaryGeometry& geometry, const StateVector& y) {
   Model model = model_in;
   model.kind = ModelKind::full;
   Reduction r;
   r.spin = shell_spin(y);
   const double rotor_spin = model.top.has_rotor ? r.spin + y[idx::nu] : 0.0;
-  const StationaryState st = stationary_state(model, r.spin);
+  const StationaryState st = stationary_state(model, geometry, r.spin);
   const StabilityResult s = stability_at(model, st, r.spin, rotor_spin);
   if (!s.exists) {
     r.reason = s.reason;
@@ -89,7 +89,8 @@ Eigen::Vector2d remaining_offset(const Reduction& r, const StateVector& y) {
   return r.offset * (reduce(r.coords, y) - r.z_star);
 }
 
-Handover handover(const Model& model_in, const Reduction& r, const StateVector& y) {
+Handover handover(const Model& model_in, const StationaryGeometry& geometry, const Reduction& r,
+                  const StateVector& y) {
   Model model = model_in;
   model.kind = ModelKind::adiabatic;
   const Eigen::VectorXd dz = reduce(r.coords, y) - r.z_star;
@@ -103,7 +104,7 @@ Handover handover(const Model& model_in, const Reduction& r, const StateVector& 
   set_figure_axis(h.y, r.coords.f_star);
   set_angular_velocity(h.y, spin * r.coords.f_star);
   if (r.coords.rotor) h.y[idx::nu] = z_end[7];
-  project_to_stationary(model, h.y);
+  project_to_stationary(model, geometry, h.y);
   return h;
 }
 

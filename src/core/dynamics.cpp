@@ -213,16 +213,6 @@ void motion(const Model& model, const StateVector& y, MotionOut<kContact>& out, 
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
 
-// cos(max_tilt), recomputed only when the angle changes: event scans evaluate margins many times per step.
-double cos_max_tilt(const Model& model) {
-  thread_local double angle = 0.0, cosine = 1.0;
-  if (model.top.max_tilt != angle) {
-    angle = model.top.max_tilt;
-    cosine = std::cos(angle);
-  }
-  return cosine;
-}
-
 template <ContactModel kContact>
 [[gnu::always_inline]] inline void evaluate_motion_in(ContactMode mode, const Model& model, const StateVector& y,
                                                       MotionOut<kContact>& out, double& painleve) {
@@ -251,7 +241,8 @@ double stick_transfer_margin(const Model& model, const StateVector& y, const Eig
 
 // Two shapes touching: their summed force is the contact force, mu the ratio of its parts, v_t and the slip the
 // touching shape's (the second's are in touching_pair_motion).
-void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVector& y, double cos_max_tilt,
+                            Dynamics& out) {
   const TwoShapeMotion m = touching_pair_motion(model, y);
   StateVector dydt;
   ContactForceRecord record;
@@ -270,13 +261,15 @@ void evaluate_pair_dynamics(const Model& model, ContactMode mode, const StateVec
   out.couple.z() = out.drilling_torque;
   out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
   out.psi_dot = dydt[idx::psi];
-  margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins);
+  margins_from_record(model, mode, y, record, cos_max_tilt, out.margins);
 }
 
 // A body with shapes: its touching shape's motion (shape_motion.hpp), mapped onto the Dynamics every reader uses.
-void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
+void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVector& y, double cos_max_tilt,
+                             Dynamics& out) {
   out = Dynamics{};
-  if (mode != ContactMode::flight && two_touching(model.shapes)) return evaluate_pair_dynamics(model, mode, y, out);
+  if (mode != ContactMode::flight && two_touching(model.shapes))
+    return evaluate_pair_dynamics(model, mode, y, cos_max_tilt, out);
   ShapeMotion m;
   StateVector dydt;
   shape_derivative(model, mode, y, dydt, nullptr, &m);  // the motion and the reference point's rates, once
@@ -295,14 +288,18 @@ void evaluate_shape_dynamics(const Model& model, ContactMode mode, const StateVe
   out.a_m = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], dydt[idx::gap_rate]);
   out.psi_dot = dydt[idx::psi];
   const ContactForceRecord record{m.force, m.drilling_torque, m.painleve};
-  if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
+  if (margins_from_record(model, mode, y, record, cos_max_tilt, out.margins)) return;
   out.margins.transfer = stick_transfer_margin(model, y, m.v_t);
 }
 
 }  // namespace
 
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out) {
-  if (has_shapes(model)) return evaluate_shape_dynamics(model, mode, y, out);
+  evaluate_dynamics(model, mode, y, out, std::cos(model.top.max_tilt));
+}
+
+void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double cos_max_tilt) {
+  if (has_shapes(model)) return evaluate_shape_dynamics(model, mode, y, cos_max_tilt, out);
   // motion() expects the finite contact's fields zero: clear what an earlier evaluation left (a right-hand side
   // needs no clearing, its ContactDynamics is fresh).
   const bool point = point_contact(model);
@@ -317,7 +314,7 @@ void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& 
     evaluate_motion_in<ContactModel::finite>(mode, model, y, out, record.painleve);
   record.force = out.contact_force;
   record.drilling_torque = out.drilling_torque;
-  if (margins_from_record(model, mode, y, record, cos_max_tilt(model), out.margins)) return;
+  if (margins_from_record(model, mode, y, record, cos_max_tilt, out.margins)) return;
   out.margins.transfer = stick_transfer_margin(model, y, out.contact.v_t);
 }
 

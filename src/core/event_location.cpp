@@ -48,9 +48,9 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
 
 }  // namespace
 
-ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y) {
+ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y, double cos_max_tilt) {
   Dynamics dyn;
-  evaluate_dynamics(model, mode, y, dyn);
+  evaluate_dynamics(model, mode, y, dyn, cos_max_tilt);
   return dyn.margins;
 }
 
@@ -95,7 +95,7 @@ inline LocatedEvent SimulatorImpl::locate_event(double t_end, const StateVector&
   for (int k = 1; k <= samples; ++k) {
     const double tk = k == samples ? t_end : t0 + (t_end - t0) * k / samples;
     if (k == samples) yk = y1; else stepper_->state_at(tk, yk);
-    const ModeMargins mk = k == samples ? m1 : margins_of(model_, mode_, yk);
+    const ModeMargins mk = k == samples ? m1 : margins_of(model_, mode_, yk, cos_max_tilt_);
     const Event kind = sample_event(mk, yk);
     if (kind != Event::none) return {kind, 0, first_event_time(t_prev, tk), mk};
     if (mk.lift > 0.0) lift_armed_ = true;
@@ -123,7 +123,7 @@ bool SimulatorImpl::scan_step(double t_end) {
   StateVector y;
   stepper_->state_at(e.t, y);
   commit(y, e.t);
-  const ModeMargins m = margins_of(model_, mode_, y_);
+  const ModeMargins m = margins_of(model_, mode_, y_, cos_max_tilt_);
   const Event at_event = sample_event(m, y_);
   apply_event(at_event != Event::none ? at_event : e.kind, m);  // rounding at the boundary: the sample's verdict
   return false;
@@ -135,7 +135,7 @@ double SimulatorImpl::first_event_time(double lo, double hi) {
   for (int i = 0; i < 80 && hi - lo > 1e-15 * std::max(1.0, std::abs(hi)); ++i) {
     const double mid = 0.5 * (lo + hi);
     stepper_->state_at(mid, ym);
-    if (sample_event(margins_of(model_, mode_, ym), ym) != Event::none) hi = mid; else lo = mid;
+    if (sample_event(margins_of(model_, mode_, ym, cos_max_tilt_), ym) != Event::none) hi = mid; else lo = mid;
   }
   return hi;
 }
@@ -150,7 +150,7 @@ ModeMargins SimulatorImpl::step_end_margins(const StateVector& y) {
       margins_from_record(model_, mode_, y, record_, cos_max_tilt_, m))
     return m;
   Dynamics& staged = sample_.stage();
-  evaluate_dynamics(model_, mode_, y, staged);
+  evaluate_dynamics(model_, mode_, y, staged, cos_max_tilt_);
   return staged.margins;
 }
 
@@ -185,7 +185,7 @@ bool SimulatorImpl::scan_flight(double t_end, const StateVector& y1) {
   if (stopped()) return false;
   if (!(t_end == stepper_->time() && static_cast<const FlightStepper&>(*stepper_).at_touchdown())) return true;
   commit(y1, t_end);
-  apply_event(Event::touchdown, margins_of(model_, mode_, y_));
+  apply_event(Event::touchdown, margins_of(model_, mode_, y_, cos_max_tilt_));
   return false;
 }
 

@@ -74,7 +74,7 @@ Snapshot SimulatorImpl::snapshot() const {
   const Regime regime = fault_ != ContactFault::none        ? Regime::contact_fault
                         : end_state_ != EndState::none ? end_regime(end_state_)
                                                        : sample_.regime;
-  Snapshot s = make_snapshot(model_, y_, t_, balance_, a, regime, mode_);
+  Snapshot s = make_snapshot(model_, stationary_geometry_, y_, t_, balance_, a, regime, mode_);
   if (fault_ != ContactFault::none) {
     s.fault = fault_;
     s.fault_message = fault_message_;
@@ -106,7 +106,8 @@ namespace {
 // The reduced model's contact: it slides at s* with N = m g cos(alpha) by construction; on a patch
 // mu(s*) k_F v_d / |w| = tan(alpha), so mu is the law's (physics.md section 12.1), and a top spinning down slows its
 // drift with the spin (w || f_hat, so a_cm = u').
-void reduced_contact(const Model& model, const StateVector& y, const StationaryState& stationary, Snapshot& s) {
+void reduced_contact(const Model& model, const StationaryGeometry& geometry, const StateVector& y,
+                     const StationaryState& stationary, Snapshot& s) {
   const Top& top = model.top;
   s.slip = stationary.slip;
   s.mu = stationary.patch_radius > 0.0 ? stationary.mu : std::tan(std::abs(model.plane.inclination));
@@ -117,15 +118,15 @@ void reduced_contact(const Model& model, const StateVector& y, const StationaryS
   s.com_acceleration.setZero();
   if (point_contact(model)) return;
   StateVector dydt;
-  adiabatic_derivative(model, y, dydt);
+  adiabatic_derivative(model, geometry, y, dydt);
   s.com_acceleration = Eigen::Vector3d(dydt[idx::u], dydt[idx::u + 1], 0.0);
   s.friction_force += top.mass * s.com_acceleration;
 }
 
 }  // namespace
 
-Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const SampleAnalysis& analysis, Regime regime, ContactMode mode) {
+Snapshot make_snapshot(const Model& model, const StationaryGeometry& geometry, const StateVector& y, double t,
+                       const EnergyBalance& balance, const SampleAnalysis& analysis, Regime regime, ContactMode mode) {
   Snapshot s;
   const Dynamics& dyn = analysis.dynamics;
   const StationaryState& stationary = analysis.stationary;
@@ -156,7 +157,7 @@ Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const
   s.rotor_spin = top.has_rotor ? s.spin + y[idx::nu] : 0.0;
   s.spin_phase = y[idx::psi];
   if (model.kind == ModelKind::adiabatic) {
-    reduced_contact(model, y, stationary, s);
+    reduced_contact(model, geometry, y, stationary, s);
   } else {
     s.slip = mode == ContactMode::rolling ? 0.0 : dyn.contact.slip;
     s.mu = dyn.mu;

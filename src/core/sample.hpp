@@ -33,7 +33,8 @@ SampleAnalysis regime_point_analysis(const Model& model, ContactMode mode, const
 const char* overflowed_part(const SampleAnalysis& a);
 
 // Snapshot of a state of a model from its analysis and its regime (classified by the caller, with hysteresis).
-Snapshot make_snapshot(const Model& model, const StateVector& y, double t, const EnergyBalance& balance,
-                       const SampleAnalysis& analysis, Regime regime, ContactMode mode);
+// `geometry` is stationary_geometry(model), the Simulator's.
+Snapshot make_snapshot(const Model& model, const StationaryGeometry& geometry, const StateVector& y, double t,
+                       const EnergyBalance& balance, const SampleAnalysis& analysis, Regime regime, ContactMode mode);
 
 }  // namespace top_sim

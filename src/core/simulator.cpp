@@ -40,7 +40,10 @@ SimulatorImpl::SimulatorImpl(const Scene& scene)
   stepper_ = make_stepper(
       scene_.integrator,
       [this](const StateVector& y, StateVector& dydt) {
-        model_derivative(model_, contact_model_, mode_, y, dydt, &record_);
+        if (model_.kind == ModelKind::adiabatic)  // the geometry solved once per model, not per right-hand side
+          adiabatic_derivative(model_, stationary_geometry_, y, dydt);
+        else
+          model_derivative(model_, contact_model_, mode_, y, dydt, &record_);
       },
       [this](const StateVector& y, StateVector& h) { jacobian_difference_steps(model_, mode_, y, h); },
       [this](const StateVector& y, bool inside) { return in_stiff_layer(y, inside); },
@@ -190,7 +193,7 @@ void SimulatorImpl::reset() {
 // W_diss and keep it), arm the new mode's margins, check for faults.
 void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_energy) {
   StateVector y = y_new;  // y_new may be y_ itself
-  if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, y);
+  if (model_.kind == ModelKind::adiabatic) project_to_stationary(model_, stationary_geometry_, y);
   commit(y, t);
   if (rebase_energy) balance_.rebase(model_, y_);
   cos_max_tilt_ = std::cos(model_.top.max_tilt);
@@ -201,7 +204,7 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
   stepper_->reset(y_, t_);  // before it, the stepper's state is no argument of a right-hand side of this model
   scan_end_.valid = false;
   scanned_ = t_;
-  last_margins_ = margins_of(model_, mode_, y_);
+  last_margins_ = margins_of(model_, mode_, y_, cos_max_tilt_);
   lift_armed_ = last_margins_.lift > 0.0;
   transfer_armed_ = last_margins_.transfer > 0.0;
   // A shape that has just let go separates from gap 0: armed at once, for its return may come within the first step

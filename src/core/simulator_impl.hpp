@@ -47,7 +47,7 @@ struct LocatedEvent {
 };
 
 // The margins of every contact shape at y in `mode` (one full dynamics evaluation).
-ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y);
+ModeMargins margins_of(const Model& model, ContactMode mode, const StateVector& y, double cos_max_tilt);
 
 // A call's wall-clock budget: it ends a pass at the first step boundary after its deadline.
 struct StepBudget {

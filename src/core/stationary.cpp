@@ -330,20 +330,6 @@ bool patch_side(const Model& model, const Eigen::Vector3d& f0, int side, Station
   return true;
 }
 
-// The inputs of a patch's sleeping state (I_f' for its spin rate): it is solved once per model and thread (a Newton
-// over force balances), while the reduced model asks for it at every right-hand side.
-bool same_sleeping_inputs(const Model& x, const Model& y) {
-  const FrictionLaw &p = x.friction, &q = y.friction;
-  const FiniteContact &c = x.finite_contact, &d = y.finite_contact;
-  return x.plane.inclination == y.plane.inclination && x.plane.gravity == y.plane.gravity &&
-         x.plane.g_plane == y.plane.g_plane && x.top.tip_radius == y.top.tip_radius &&
-         x.top.com_offset == y.top.com_offset && x.top.mass == y.top.mass &&
-         shell_axial_inertia(x.top) == shell_axial_inertia(y.top) && p.kind == q.kind && p.mu_c == q.mu_c &&
-         p.s_c == q.s_c && p.mu0 == q.mu0 && p.k == q.k && p.s0 == q.s0 && p.mu == q.mu && p.points == q.points &&
-         c.patch_radius == d.patch_radius && c.hertz == d.hertz && c.effective_modulus == d.effective_modulus &&
-         c.pressure == d.pressure && c.law == d.law;
-}
-
 StationaryGeometry solve_patch_geometry(const Model& model, StationaryGeometry g) {
   const Eigen::Vector3d f0 = g.state.f_hat;  // the point contact's, where the Newton starts
   g.patch = true;
@@ -354,25 +340,14 @@ StationaryGeometry solve_patch_geometry(const Model& model, StationaryGeometry g
   return g;
 }
 
-StationaryGeometry patch_geometry(const Model& model, const StationaryGeometry& point) {
-  thread_local bool cached = false;
-  thread_local Model key;
-  thread_local StationaryGeometry value;
-  if (!cached || !same_sleeping_inputs(model, key)) {
-    value = solve_patch_geometry(model, point);
-    key = model;
-    cached = true;
-  }
-  return value;
-}
-
 }  // namespace
 
 StationaryGeometry stationary_geometry(const Model& model) {
   StationaryGeometry g;
   StationaryState& st = g.state;
   if (!sleeping_geometry(model, st)) return g;
-  if (model.finite_contact.has_patch()) return patch_geometry(model, g);
+  // A patch: a Newton over force balances, solved once per model by its caller (the Simulator holds the result).
+  if (model.finite_contact.has_patch()) return solve_patch_geometry(model, g);
   const double alpha = model.plane.inclination;
   if (!stable_branch(model.friction, std::tan(alpha), st.slip, st.slip_unstable)) {
     std::ostringstream why;

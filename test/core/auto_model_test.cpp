@@ -65,9 +65,9 @@ TEST(AutoModel, ThePredictedOffsetAndSpinAreWhereTheFullModelGoes) {
   const auto spin_of = [](const StateVector& y) { return angular_velocity(y).dot(figure_axis(y).normalized()); };
   for (double t0 : {60.0, 100.0}) {
     full.advance_to(t0);
-    const Reduction r = analyse_reduction(full.model(), full.state());
+    const Reduction r = analyse_reduction(full.model(), stationary_geometry(full.model()), full.state());
     ASSERT_TRUE(r.valid) << r.reason;
-    const Handover h = handover(full.model(), r, full.state());
+    const Handover h = handover(full.model(), stationary_geometry(full.model()), r, full.state());
     const double t1 = t0 + 600.0;
     Simulator later(relaxation(0.2, "full"));
     later.advance_to(t1);
@@ -174,7 +174,7 @@ TEST(AutoModel, ABearingThatDragsTheSpinFastKeepsTheFullModelToTheBit) {
   Scene auto_scene = full_scene;
   auto_scene.model.automatic.enabled = true;
   Simulator full(full_scene), automatic(auto_scene);
-  const Reduction r = analyse_reduction(automatic.model(), automatic.state());
+  const Reduction r = analyse_reduction(automatic.model(), stationary_geometry(automatic.model()), automatic.state());
   EXPECT_FALSE(r.valid);
   EXPECT_FALSE(r.reason.empty());
   for (double t : {10.0, 30.0, 60.0}) {
@@ -188,7 +188,7 @@ TEST(AutoModel, ABearingThatDragsTheSpinFastKeepsTheFullModelToTheBit) {
   auto_scene.initial.spin = -200.0;
   auto_scene.initial.rotor_spin = -199.0;
   const Simulator dragged(auto_scene);
-  const Reduction d = analyse_reduction(dragged.model(), dragged.state());
+  const Reduction d = analyse_reduction(dragged.model(), stationary_geometry(dragged.model()), dragged.state());
   EXPECT_FALSE(d.valid);
   EXPECT_NE(d.reason.find("bearing"), std::string::npos) << "reason: " << d.reason;
   auto_scene.initial.rotor_spin = -200.0;
