@@ -15,12 +15,14 @@ if(TARGET top_sim_lcm_echo)
 endif()
 # The library's public headers, named one by one: a header in include/top_sim is installed only when listed here
 # (test instrumentation and internal steppers live in src/core). Each compiles on its own (header_check.cmake).
+# What a user of the library calls (the Simulator, scenes, models, states, snapshots, commands, integrators' options,
+# the stationary state, stability, fits, pacing, trajectories) and what those headers include; the body's mechanics
+# behind the Simulator (shape motion, impacts, flight, energy, orientation, the auto reduction) are internal.
 set(TOP_SIM_INSTALLED_HEADERS
-  adiabatic.hpp angular_momentum.hpp auto_model.hpp command.hpp command_fields.hpp contact.hpp contact_modes.hpp
-  contact_shapes.hpp cpu_time.hpp
-  data_path.hpp dynamics.hpp energy.hpp finite_contact.hpp fit.hpp flight.hpp format.hpp friction.hpp impact.hpp
-  integrators.hpp limits.hpp model.hpp nutation.hpp orientation.hpp pacing.hpp plane.hpp pose.hpp regime.hpp
-  scene.hpp shape_motion.hpp simulator.hpp snapshot.hpp stability.hpp state.hpp stationary.hpp trajectory.hpp)
+  adiabatic.hpp command.hpp command_fields.hpp contact.hpp contact_modes.hpp contact_shapes.hpp cpu_time.hpp
+  data_path.hpp dynamics.hpp finite_contact.hpp fit.hpp format.hpp friction.hpp integrators.hpp limits.hpp model.hpp
+  pacing.hpp plane.hpp pose.hpp regime.hpp scene.hpp simulator.hpp snapshot.hpp stability.hpp state.hpp
+  stationary.hpp trajectory.hpp)
 list(TRANSFORM TOP_SIM_INSTALLED_HEADERS PREPEND ${CMAKE_CURRENT_SOURCE_DIR}/include/top_sim/
   OUTPUT_VARIABLE top_sim_installed_header_paths)
 install(FILES ${top_sim_installed_header_paths} DESTINATION ${TOP_SIM_INSTALL_INCLUDE}/top_sim)

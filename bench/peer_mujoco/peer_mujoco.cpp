@@ -31,7 +31,7 @@
 #include "mujoco_top.hpp"
 #include "pivot.hpp"
 #include "top_sim/format.hpp"
-#include "top_sim/nutation.hpp"
+#include "../../src/core/nutation.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "top_sim/orientation.hpp"
+#include "orientation.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {

@@ -1,5 +1,5 @@
 // The top's angular momentum about its centre of mass.
-#include "top_sim/angular_momentum.hpp"
+#include "angular_momentum.hpp"
 
 #include <cmath>
 

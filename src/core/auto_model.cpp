@@ -1,5 +1,5 @@
 // model.kind auto (physics.md section 7.1): the handover from the full to the reduced model.
-#include "top_sim/auto_model.hpp"
+#include "auto_model.hpp"
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>

@@ -2,7 +2,7 @@
 #include <limits>
 
 #include "simulator_impl.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -7,7 +7,7 @@
 #include "patch_law.hpp"
 #include "rigid_body.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -9,9 +9,9 @@
 #include "patch_law.hpp"
 #include "rigid_body.hpp"
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/angular_momentum.hpp"
-#include "top_sim/orientation.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "angular_momentum.hpp"
+#include "orientation.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -1,9 +1,9 @@
 // Energy balance E + W_diss (physics.md section 4).
-#include "top_sim/energy.hpp"
+#include "energy.hpp"
 
 #include <cmath>
 
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -6,8 +6,8 @@
 
 #include "simulator_impl.hpp"
 #include "top_sim/format.hpp"
-#include "top_sim/impact.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "impact.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

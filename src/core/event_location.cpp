@@ -6,7 +6,7 @@
 
 #include "simulator_impl.hpp"
 #include "top_sim/format.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -1,5 +1,5 @@
 // Flight in closed form (physics.md section 9, "Flight in closed form").
-#include "top_sim/flight.hpp"
+#include "flight.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,5 +1,5 @@
 // Touchdown impact (physics.md section 9).
-#include "top_sim/impact.hpp"
+#include "impact.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/LU>
@@ -9,7 +9,7 @@
 #include "top_sim/contact.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/friction.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -1,9 +1,9 @@
 // The fast top's nutation frequency.
-#include "top_sim/nutation.hpp"
+#include "nutation.hpp"
 
 #include <cmath>
 
-#include "top_sim/angular_momentum.hpp"
+#include "angular_momentum.hpp"
 
 namespace top_sim {
 

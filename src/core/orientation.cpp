@@ -1,5 +1,5 @@
 // Orientation convention of physics.md section 2.
-#include "top_sim/orientation.hpp"
+#include "orientation.hpp"
 
 namespace top_sim {
 

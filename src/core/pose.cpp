@@ -2,8 +2,8 @@
 
 #include <cmath>
 
-#include "top_sim/shape_motion.hpp"
-#include "top_sim/orientation.hpp"
+#include "shape_motion.hpp"
+#include "orientation.hpp"
 
 namespace top_sim {
 

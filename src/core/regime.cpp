@@ -5,7 +5,7 @@
 #include <cmath>
 #include <optional>
 
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 #include "top_sim/contact.hpp"
 

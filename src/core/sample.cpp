@@ -7,9 +7,9 @@
 #include "counters.hpp"
 #include "simulator_impl.hpp"
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/orientation.hpp"
+#include "orientation.hpp"
 #include "top_sim/pose.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

@@ -3,7 +3,7 @@
 
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
+#include "energy.hpp"
 #include "top_sim/regime.hpp"
 #include "top_sim/snapshot.hpp"
 #include "top_sim/stationary.hpp"

@@ -17,10 +17,10 @@
 #include "top_sim/command_fields.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
-#include "top_sim/energy.hpp"
+#include "energy.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 #include "top_sim/stationary.hpp"
 
 namespace top_sim {

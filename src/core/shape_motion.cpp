@@ -1,6 +1,6 @@
 // One contact shape's motion in the contact modes of physics.md section 9, with the shape's lowest point as the
 // lever (section 13).
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Geometry>
@@ -12,7 +12,7 @@
 
 #include "top_sim/finite_contact.hpp"
 #include "top_sim/friction.hpp"
-#include "top_sim/orientation.hpp"
+#include "orientation.hpp"
 #include "patch_law.hpp"
 
 namespace top_sim {

@@ -6,9 +6,9 @@
 
 #include "simulator_impl.hpp"
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/angular_momentum.hpp"
+#include "angular_momentum.hpp"
 #include "top_sim/format.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "shape_motion.hpp"
 
 namespace top_sim {
 

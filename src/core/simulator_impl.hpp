@@ -20,12 +20,12 @@
 #include <vector>
 
 #include "sample.hpp"
-#include "top_sim/auto_model.hpp"
+#include "auto_model.hpp"
 #include "top_sim/command.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
-#include "top_sim/flight.hpp"
+#include "energy.hpp"
+#include "flight.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"

@@ -6,7 +6,7 @@
 
 #include "test_util.hpp"
 #include "top_sim/adiabatic.hpp"
-#include "top_sim/auto_model.hpp"
+#include "../../src/core/auto_model.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"
 

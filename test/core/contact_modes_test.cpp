@@ -8,7 +8,7 @@
 
 #include "test_util.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 
 namespace {
 

@@ -10,7 +10,7 @@
 #include "top_sim/dynamics.hpp"
 #include "top_sim/friction.hpp"
 #include "top_sim/scene.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "../../src/core/shape_motion.hpp"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include "test_states.hpp"
 #include "test_util.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

@@ -5,7 +5,7 @@
 
 #include "test_states.hpp"
 #include "test_util.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 #include "top_sim/scene.hpp"
 
 using namespace top_sim;

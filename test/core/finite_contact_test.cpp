@@ -4,9 +4,9 @@
 #include <cmath>
 
 #include "test_util.hpp"
-#include "top_sim/angular_momentum.hpp"
+#include "../../src/core/angular_momentum.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 #include "top_sim/finite_contact.hpp"
 #include "../../src/core/exact_law_table.hpp"
 

@@ -9,9 +9,9 @@
 #include <memory>
 
 #include "test_util.hpp"
-#include "top_sim/angular_momentum.hpp"
+#include "../../src/core/angular_momentum.hpp"
 #include "top_sim/integrators.hpp"
-#include "top_sim/nutation.hpp"
+#include "../../src/core/nutation.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"

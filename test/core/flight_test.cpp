@@ -7,8 +7,8 @@
 
 #include "test_util.hpp"
 #include "top_sim/dynamics.hpp"
-#include "top_sim/energy.hpp"
-#include "top_sim/flight.hpp"
+#include "../../src/core/energy.hpp"
+#include "../../src/core/flight.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/simulator.hpp"
 

@@ -11,7 +11,7 @@
 #include <string>
 
 #include "test_util.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/plane.hpp"
 #include "top_sim/scene.hpp"

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "test_util.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 
 namespace {
 

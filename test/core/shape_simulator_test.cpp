@@ -5,8 +5,8 @@
 #include <cmath>
 
 #include "test_util.hpp"
-#include "top_sim/energy.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "../../src/core/energy.hpp"
+#include "../../src/core/shape_motion.hpp"
 #include "top_sim/simulator.hpp"
 
 namespace {

@@ -6,7 +6,7 @@
 #include <vector>
 
 #include "test_util.hpp"
-#include "top_sim/energy.hpp"
+#include "../../src/core/energy.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/snapshot.hpp"

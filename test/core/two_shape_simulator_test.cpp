@@ -6,8 +6,8 @@
 #include <cmath>
 
 #include "test_util.hpp"
-#include "top_sim/angular_momentum.hpp"
-#include "top_sim/shape_motion.hpp"
+#include "../../src/core/angular_momentum.hpp"
+#include "../../src/core/shape_motion.hpp"
 #include "top_sim/simulator.hpp"
 
 namespace {
