@@ -8,6 +8,7 @@
 #include <string>
 
 #include "top_sim/dynamics.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

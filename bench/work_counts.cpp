@@ -9,6 +9,7 @@
 #include <string>
 
 #include "../src/core/counters.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "top_sim/command.hpp"
-#include "top_sim/data_path.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"

@@ -7,6 +7,7 @@
 #include <string>
 
 #include "run.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 
 namespace top_sim {

@@ -17,6 +17,7 @@
 #include "writers.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/pacing.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #ifdef TOP_SIM_HAVE_LCM
 #include "lcm_publisher.hpp"

@@ -19,6 +19,7 @@
 #include "run.hpp"
 #include "top_sim/adiabatic.hpp"
 #include "top_sim/plane.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"

@@ -1,4 +1,5 @@
 // Scene files (docs/interfaces.md): strict loading, every key checked, errors name file, key, value and range.
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 
 #include <yaml-cpp/yaml.h>

@@ -1,4 +1,4 @@
-// The steppers behind make_stepper (integrators.cpp), one file each: fixed_stepper.cpp, dopri5.cpp,
+// The steppers behind make_stepper (steppers.cpp), one file each: fixed_stepper.cpp, dopri5.cpp,
 // rosenbrock4.cpp, switching_stepper.cpp, layered_stepper.cpp.
 #pragma once
 

@@ -13,6 +13,7 @@
 
 #include "conversions.hpp"
 #include "markers.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 
 namespace top_sim_ros {

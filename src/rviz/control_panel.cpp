@@ -33,6 +33,7 @@
 #include "top_sim/Kill.h"
 #include "top_sim/Spawn.h"
 #include "top_sim/TopCommand.h"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 
 namespace top_sim_rviz {

@@ -12,6 +12,7 @@
 #include "top_sim/command_fields.hpp"
 #include "top_sim/format.hpp"
 #include "top_sim/limits.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

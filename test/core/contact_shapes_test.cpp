@@ -9,6 +9,7 @@
 #include "top_sim/contact_shapes.hpp"
 #include "top_sim/dynamics.hpp"
 #include "top_sim/friction.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "../../src/core/shape_motion.hpp"
 

@@ -6,6 +6,7 @@
 #include "test_states.hpp"
 #include "test_util.hpp"
 #include "../../src/core/energy.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 
 using namespace top_sim;

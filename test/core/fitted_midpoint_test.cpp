@@ -13,6 +13,7 @@
 #include "top_sim/integrators.hpp"
 #include "../../src/core/nutation.hpp"
 #include "top_sim/plane.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

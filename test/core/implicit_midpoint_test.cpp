@@ -14,6 +14,7 @@
 #include "../../src/core/energy.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/plane.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 

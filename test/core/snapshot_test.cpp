@@ -7,6 +7,7 @@
 
 #include "test_util.hpp"
 #include "../../src/core/energy.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/snapshot.hpp"

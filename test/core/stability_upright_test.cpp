@@ -7,6 +7,7 @@
 #include <string>
 
 #include "test_util.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/stability.hpp"
 

@@ -14,6 +14,7 @@
 
 #include "../../src/output/writers.hpp"
 #include "finite_fields.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stationary.hpp"

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "test_util.hpp"
+#include "top_sim/data_path.hpp"
 #include "top_sim/scene.hpp"
 #include "top_sim/simulator.hpp"
 #include "top_sim/stability.hpp"
