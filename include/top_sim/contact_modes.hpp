@@ -55,7 +55,9 @@ struct ModeMargins {
   double transfer = kNone;  // slipping: stick function max(|v_t|/v_stick - 1, (|F_t| - mu_s F_n)/(m g));
                             // rolling: (mu_s F_n - |F_t|)/(m g); flight: none
   double painleve = kNone;  // slipping: m (n . K d) (fault when <= 0)
-  double tilt = kNone;      // in contact: n . f_hat - cos(theta_max) ("fallen" when < 0); none for a ball
+  double end = kNone;       // in contact, the end state's margin (the run ends when < 0, tilt_end_state names it):
+                            // the tip sphere's n . f_hat - cos(theta_max) (fallen), a rim's tilt sine above
+                            // kFlatEndSine (lying_flat), two shapes' rest margin (at_rest); none for a ball
   double touch = kNone;     // in contact, a body with shapes: the least gap of the shapes not touching (a second
                             // shape's touchdown when <= 0)
 };

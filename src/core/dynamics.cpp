@@ -431,9 +431,9 @@ double rest_margin(const Model& model, const StateVector& y, const TwoShapeMotio
 }
 
 // A body with shapes: in flight the least gap of its shapes is the touchdown's margin; on a rim, the tilt's sine
-// above kFlatEndSine is the margin of the flat end (the tilt margin's slot: its event ends the run).
+// above kFlatEndSine is the margin of the flat end (the end margin: its event ends the run).
 [[gnu::noinline]] void shape_margins(const Model& model, ContactMode mode, const StateVector& y, ModeMargins& mg) {
-  mg.tilt = ModeMargins::kNone;
+  mg.end = ModeMargins::kNone;
   if (mode == ContactMode::flight) {
     for (std::size_t k = 0; k < model.shapes.count; ++k)
       mg.lift = std::min(mg.lift, shape_gap(model, y, model.shapes.shape[k]));
@@ -443,7 +443,7 @@ double rest_margin(const Model& model, const StateVector& y, const TwoShapeMotio
   mg.touch = free_shape_gap(model, y, free_shape);
   if (two_touching(model.shapes)) {  // no flat end; each contact's stick or slip (both slip on patches)
     const TwoShapeMotion m = touching_pair_motion(model, y);
-    mg.tilt = rest_margin(model, y, m);
+    mg.end = rest_margin(model, y, m);
     mg.transfer = ModeMargins::kNone;
     if (static_friction(model) > 0.0 && !model.finite_contact.has_patch())
       mg.transfer = std::min(pair_contact_margin(model, y, m, 0), pair_contact_margin(model, y, m, 1));
@@ -451,7 +451,7 @@ double rest_margin(const Model& model, const StateVector& y, const TwoShapeMotio
   }
   if (model.shapes.shape[model.shapes.touching].kind == ShapeKind::rim) {
     const double c = figure_axis(y).normalized().z();
-    mg.tilt = std::sqrt(std::max(0.0, 1.0 - c * c)) - kFlatEndSine;
+    mg.end = std::sqrt(std::max(0.0, 1.0 - c * c)) - kFlatEndSine;
   }
 }
 
@@ -463,7 +463,7 @@ namespace {
                                                    const ContactForceRecord& r, double cos_max_tilt, ModeMargins& mg) {
   mg = ModeMargins{};
   if (mode != ContactMode::flight && model.top.com_offset != 0.0)
-    mg.tilt = figure_axis(y).normalized().z() - cos_max_tilt;
+    mg.end = figure_axis(y).normalized().z() - cos_max_tilt;
   switch (mode) {
     case ContactMode::slipping:
       mg.lift = r.force.z();

@@ -37,7 +37,7 @@ void SimulatorImpl::apply_event(Event event, const ModeMargins& m) {
       fail(ContactFault::painleve, describe(ContactFault::painleve, m.painleve, t_));
       return;
     case Event::end:  // a rim lying flat, a body at rest on two shapes, a top fallen past max_tilt
-      end(tilt_end_state(model_), m.tilt);
+      end(tilt_end_state(model_), m.end);
       return;
     case Event::transfer:
       if (has_shapes(model_) && two_touching(model_.shapes)) {

@@ -21,7 +21,7 @@ constexpr int kMinFlightSamples = 4;  // a whole hop may fit in one step: always
 constexpr double kForceGuard = 0.5;     // N, F_n, rolling margin: fraction of the weight m g
 constexpr double kStickGuard = 1.0e3;   // stick function: |v_t| < 1000 v_stick
 constexpr double kPainleveGuard = 0.5;  // m n.K d (1 without friction)
-constexpr double kTiltGuard = 0.05;     // n . f_hat - cos(theta_max)
+constexpr double kEndGuard = 0.05;      // the end margin (e.g. n . f_hat - cos(theta_max))
 constexpr double kTouchGuard = 0.1;     // a free shape's gap: fraction of the touching shape's reach
 
 // Spacing of event samples: 1/40 of the nutation period 2 pi I_d / |L_total . f_hat| (infinite without spin).
@@ -43,7 +43,7 @@ bool near_threshold(const Model& model, const ModeMargins& m, ContactMode mode) 
     if (m.touch < kTouchGuard * (std::abs(k.offset) + k.radius)) return true;
   }
   return m.lift < kForceGuard * weight || m.transfer < transfer_guard || m.painleve < kPainleveGuard ||
-         m.tilt < kTiltGuard;
+         m.end < kEndGuard;
 }
 
 }  // namespace
@@ -174,7 +174,7 @@ Event SimulatorImpl::sample_event(const ModeMargins& m, const StateVector& y) co
     return Event::second_touchdown;  // a shape reaching the plane closes on it (as a flight's touchdown)
   }
   if (transfer_armed_ && m.transfer <= 0.0) return Event::transfer;
-  if (m.tilt < 0.0) return Event::end;
+  if (m.end < 0.0) return Event::end;
   return Event::none;
 }
 

@@ -217,8 +217,8 @@ void SimulatorImpl::restart(const StateVector& y_new, double t, bool rebase_ener
   } else if (model_.kind == ModelKind::full) {
     if (last_margins_.painleve <= 0.0)
       fail(ContactFault::painleve, describe(ContactFault::painleve, last_margins_.painleve, t_));
-    else if (last_margins_.tilt < 0.0)
-      end(tilt_end_state(model_), last_margins_.tilt);
+    else if (last_margins_.end < 0.0)
+      end(tilt_end_state(model_), last_margins_.end);
   }
 }
 
