@@ -18,6 +18,10 @@ constexpr double kMinStep = 1.0e-12;
 // material's bursting speed, and needs steps under 1e-8 s; beyond it the energy eventually overflows.
 constexpr double kMaxSpin = 1.0e6;
 
+// Largest fixed contact-patch radius a [m] (contact.patch_radius, the command's): a patch wider than any top. Beyond
+// some 1e300 m the patch's lever times the spin overflows to inf and its slip to NaN (docs/reliability.md, bug 10).
+constexpr double kMaxPatchRadius = 1.0;
+
 // Default bound on the relative energy-balance residual |E + W_diss - E0| / scale (physics.md section 4): a
 // physical motion keeps it near the integrator's tolerance (< 3e-3 in every measured setting, docs/performance.md);
 // beyond this an unstable step is inventing energy, and its apparent lift-offs and falls are not physics.

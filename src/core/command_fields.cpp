@@ -25,7 +25,7 @@ std::vector<CommandField> make_rows() {
        "static coefficient mu_s (friction.static)", &Command::static_friction},
       {"restitution", "", R::between(0.0, false, 1.0, false), "in [0, 1]",
        "normal restitution e_N (contact.restitution); > 0 needs contact modes", &Command::restitution},
-      {"patch_radius", "m", R::at_least(0.0), ">= 0 and finite",
+      {"patch_radius", "m", R::between(0.0, false, kMaxPatchRadius, false), "in [0, 1] m",
        "fixed contact patch radius a (contact.patch_radius), replaces hertz", &Command::patch_radius},
       {"rolling_resistance", "m", R::at_least(0.0), ">= 0 and finite",
        "rolling resistance delta (contact.rolling_resistance)", &Command::rolling_resistance},

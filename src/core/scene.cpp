@@ -360,7 +360,8 @@ void read_contact(Section& root, const std::string& file, Model& model) {
                            "), and the plane file's (friction's) young_modulus and poisson_ratio (given: " +
                            (model.plane_material.given() ? "yes" : "no") + ")");
   } else {
-    fc.patch_radius = c.number("patch_radius", 0.0, non_negative, ">= 0 [m], or hertz");
+    fc.patch_radius = c.number("patch_radius", 0.0, [](double v) { return v >= 0.0 && v <= kMaxPatchRadius; },
+                               "in [0, 1] [m], or hertz");
   }
   fc.pressure = c.word("patch_pressure", "hertz", {"hertz", "uniform"}) == "uniform" ? PatchPressure::uniform
                                                                                      : PatchPressure::hertz;

@@ -89,8 +89,8 @@ TEST(Command, FiniteContactFieldsNonNegativeAndNotUnderTheReducedModel) {
   const Model full = model_of("default");
   for (double bad : {-1e-4, double(NAN), double(INFINITY)}) {
     Command c;
-    c.patch_radius = bad;
-    EXPECT_TRUE(refused(c, full, "patch_radius", ">= 0 and finite")) << bad;
+    c.patch_radius = bad;  // and at most kMaxPatchRadius (1 m)
+    EXPECT_TRUE(refused(c, full, "patch_radius", "in [0, 1] m")) << bad;
     c = Command{};
     c.drag = bad;
     EXPECT_TRUE(refused(c, full, "drag", ">= 0 and finite")) << bad;

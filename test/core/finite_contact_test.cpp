@@ -286,7 +286,7 @@ TEST(FiniteContactScene, BadInputNamesKeyValueAndRange) {
     return std::string("accepted");
   };
   const std::string base = "top: aluminium\nfriction: pmma\n";
-  EXPECT_NE(error(base + "contact: {patch_radius: -1.0e-4}").find("contact.patch_radius: -1e-04 is out of range; must be >= 0 [m], or hertz"), std::string::npos);
+  EXPECT_NE(error(base + "contact: {patch_radius: -1.0e-4}").find("contact.patch_radius: -1e-04 is out of range; must be in [0, 1] [m], or hertz"), std::string::npos);
   EXPECT_NE(error(base + "contact: {patch_radius: .nan}").find("contact.patch_radius"), std::string::npos);
   // A top without its material (the shipped tops and planes carry theirs).
   EXPECT_NE(error("top: {mass: 0.025}\nfriction: pmma\ncontact: {patch_radius: hertz}")
@@ -313,7 +313,7 @@ TEST(FiniteContactCommand, RefusedValuesLeaveTheModel) {
   Scene scene = scene_from(top_sim_test::standard_scene(0.1, 150.0));
   Command c;
   c.patch_radius = -1.0;
-  EXPECT_EQ(validate(c, scene.model), "patch_radius = -1: must be >= 0 and finite");
+  EXPECT_EQ(validate(c, scene.model), "patch_radius = -1: must be in [0, 1] m");
   c = Command{};
   c.drag = NAN;
   EXPECT_NE(validate(c, scene.model).find("drag = nan"), std::string::npos);

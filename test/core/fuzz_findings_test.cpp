@@ -148,10 +148,26 @@ TEST(FuzzFindings, PatchOfAHugeRadiusHasAFiniteSlip) {
   EXPECT_TRUE(std::isfinite(law.mu) && std::isfinite(law.force_per_speed) && std::isfinite(law.drilling));
   Simulator sim(scene);
   Command c;
-  c.patch_radius = 2.7744062535996355e180;
-  ASSERT_EQ(sim.submit(c), "");
-  sim.advance_to(1e-4);
-  if (sim.fault() == ContactFault::none) EXPECT_EQ(top_sim_test::nonfinite_fields(sim.snapshot()), "");
+  c.patch_radius = 2.7744062535996355e180;  // since bug 10 beyond kMaxPatchRadius: refused, the field and range named
+  const std::string why = sim.submit(c);
+  EXPECT_NE(why.find("patch_radius"), std::string::npos) << why;
+  EXPECT_NE(why.find("in [0, 1] m"), std::string::npos) << why;
+}
+
+// Step input (issue 49's run at 39d85a9): the default top with contact.patch_radius 1.8e308 m, the exact drilling law,
+// starting 4e-33 m above the plane: at the touchdown the lever Rbar |omega_n| overflowed to inf and the slip was NaN
+// one step before the numerical fault. A patch radius beyond kMaxPatchRadius (1 m) is now refused at load.
+TEST(FuzzFindings, SceneWithAPatchBeyondTheLimitIsRefused) {
+  for (const char* radius : {"1.7976931348623157e+308", "1.5"}) {
+    try {
+      scene_from(std::string("top: aluminium\nfriction: pmma\ncontact: {patch_radius: ") + radius + "}\n");
+      ADD_FAILURE() << radius << " accepted";
+    } catch (const SceneError& e) {
+      EXPECT_NE(std::string(e.what()).find("contact.patch_radius"), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find("in [0, 1] [m]"), std::string::npos) << e.what();
+    }
+  }
+  EXPECT_NO_THROW(scene_from("top: aluminium\nfriction: pmma\ncontact: {patch_radius: 1.0}\n"));
 }
 
 // Step input: the default top made one sphere of radius 1e300 m at offset pi, spin 0: v_t (1.6e297 m/s, the sphere's

@@ -176,6 +176,7 @@ std::string check_scene_error(const SceneError& e) {
 
 // parse_scene's outcome: "" for a SceneError with a message or a scene that runs; else the broken invariant.
 std::string parse_and_run(const YAML::Node& root, const std::string& source, double horizon = kMaxSimulatedTime) {
+  trace("scene:\n" + YAML::Dump(root));
   Scene scene;
   try {
     scene = parse_scene(root, source, config_dir());
