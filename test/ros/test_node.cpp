@@ -301,7 +301,7 @@ TEST_F(NodeTest, InvalidCommandsAreRejectedWithAWarningAndTheStateIsUntouched) {
       {cmd([](top_sim::TopCommand& c) { c.set_static_friction = true; c.static_friction = -0.1; }),
        {"static_friction = -0.1", ">= mu(0)"}},
       {cmd([](top_sim::TopCommand& c) { c.set_patch_radius = true; c.patch_radius = -1.0; }),
-       {"patch_radius = -1", ">= 0"}},
+       {"patch_radius = -1", "in [0, 1] m"}},
       // One bad field rejects the whole command: the valid inclination must not be applied either.
       {cmd([nan](top_sim::TopCommand& c) { c.set_inclination = true; c.inclination = 0.05; c.set_spin = true; c.spin = nan; }),
        {"spin = ", "nan"}},
@@ -339,7 +339,7 @@ TEST_F(NodeTest, DynamicReconfigureRefusesOutOfRangeValuesInsteadOfClamping) {
                                    {"publish_rate", 0.0, g_rate, {"publish_rate = 0", "(0, 10000]"}},
                                    {"spin", 2e6, std::nan(""), {"spin = 2e+06", "|spin| <= 1e+06"}},
                                    {"alpha", 2.0, std::nan(""), {"inclination = 2", "|alpha| < pi/2"}},
-                                   {"patch_radius", -1.0, 0.0, {"patch_radius = -1", ">= 0"}}};
+                                   {"patch_radius", -1.0, 0.0, {"patch_radius = -1", "in [0, 1] m"}}};
   const Received before = mon.latest();
   for (const Case& k : cases) {
     dynamic_reconfigure::Reconfigure srv;
