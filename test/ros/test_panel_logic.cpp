@@ -38,7 +38,7 @@ TEST(PanelLogic, MotionFieldsBecomeACommandAndBadTextNamesFieldAndRange) {
             "Nothing was sent: no value was typed in and no friction law picked.");
 }
 
-// Patch, rolling resistance and air: only the filled-in fields are sent, each checked by the core (>= 0).
+// Patch, rolling resistance and air: only the filled-in fields are sent, each checked by the core (its range).
 TEST(PanelLogic, ContactFieldsGiveOnlyWhatIsFilledInAndTheCoreChecksThem) {
   PanelFields f;
   f.contact["patch_radius"] = "2e-4";
@@ -55,7 +55,7 @@ TEST(PanelLogic, ContactFieldsGiveOnlyWhatIsFilledInAndTheCoreChecksThem) {
   EXPECT_EQ(top_sim_rviz::sent_message(c, "top"),
             "Sent to top 'top': patch_radius " + a + " m and drag " + top_sim::format_number(1e-6) + " N s/m.");
   f.contact["patch_radius"] = "-1";
-  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("patch_radius = -1: must be >= 0"), std::string::npos)
+  EXPECT_NE(top_sim_rviz::fields_to_message(f, c).find("patch_radius = -1: must be in [0, 1] m"), std::string::npos)
       << top_sim_rviz::fields_to_message(f, c);
   f.contact["patch_radius"] = "wide";
   EXPECT_EQ(top_sim_rviz::fields_to_message(f, c), "patch_radius = 'wide': must be a number");
