@@ -1,9 +1,11 @@
-# Tests of the core (plain build: GoogleTest, pytest, the install/export check) and Google Benchmark targets.
-# The catkin build (TOP_SIM_ROS) runs the ROS tests only (cmake/ros.cmake); scripts/test.sh runs both builds.
-if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
+# Tests of the core (GoogleTest, pytest, the install/export check, through ctest) and Google Benchmark targets.
+# In both builds: the plain one builds them by default; the catkin one with its `tests` target (catkin_make tests),
+# so scripts/test.sh builds the core once in Release, and quickstart.sh does not wait for the test binaries.
+if(TOP_SIM_TESTS)
   find_package(GTest REQUIRED)
   file(GLOB TOP_SIM_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
   add_executable(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
+  top_sim_test_only(top_sim_core_tests)
   target_link_libraries(top_sim_core_tests top_sim_cli_common GTest::gtest GTest::gtest_main)
   target_compile_definitions(top_sim_core_tests PRIVATE
     TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
@@ -11,7 +13,17 @@ if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
     TOP_SIM_TEST_FIT_BINARY="$<TARGET_FILE:top_sim_fit>"
     TOP_SIM_TEST_STABILITY_BINARY="$<TARGET_FILE:top_sim_stability>")
   add_dependencies(top_sim_core_tests top_sim_run top_sim_sweep top_sim_fit top_sim_stability)  # the CLI tests run them
-  add_test(NAME core_tests COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests.xml)
+  # In shards (GoogleTest's GTEST_TOTAL_SHARDS), so `ctest -j2` keeps both cores busy; each shard its own TempDir.
+  set(TOP_SIM_CORE_TEST_SHARDS 2 CACHE STRING "Processes the core's GoogleTest suite is split into under ctest")
+  math(EXPR last_shard "${TOP_SIM_CORE_TEST_SHARDS} - 1")
+  foreach(shard RANGE ${last_shard})
+    set(shard_tmp ${PROJECT_BINARY_DIR}/core_tests_tmp/${shard})
+    file(MAKE_DIRECTORY ${shard_tmp})
+    add_test(NAME core_tests_${shard}
+      COMMAND top_sim_core_tests --gtest_output=xml:${TOP_SIM_TEST_RESULTS}/core_tests_${shard}.xml)
+    set_tests_properties(core_tests_${shard} PROPERTIES ENVIRONMENT
+      "GTEST_TOTAL_SHARDS=${TOP_SIM_CORE_TEST_SHARDS};GTEST_SHARD_INDEX=${shard};TEST_TMPDIR=${shard_tmp}/")
+  endforeach()
 
   # The LCM stream as top_sim_lcm_echo prints it: every field of lcm/top_state_t.lcm (multicast route needed).
   if(TARGET top_sim_lcm_echo)

@@ -16,15 +16,16 @@ else()
   set(TOP_SIM_INSTALL_LIB ${CMAKE_INSTALL_LIBDIR})
   set(TOP_SIM_INSTALL_INCLUDE ${CMAKE_INSTALL_INCLUDEDIR})
   set(TOP_SIM_INSTALL_SHARE ${CMAKE_INSTALL_DATADIR}/${PROJECT_NAME})
-  enable_testing()
-  # JUnit XML of every plain-build test suite goes here (scripts/test.sh counts the cases).
-  set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the tests")
-  # Installed binaries find the installed libraries relative to themselves (a clean environment, any prefix).
-  file(RELATIVE_PATH TOP_SIM_BIN_TO_LIB /${TOP_SIM_INSTALL_BIN} /${TOP_SIM_INSTALL_LIB})
-  set(CMAKE_INSTALL_RPATH "$ORIGIN/${TOP_SIM_BIN_TO_LIB}")
   # The Python module's install directory: PYTHONPATH=<prefix>/lib/python3/dist-packages (Debian's layout).
   set(TOP_SIM_INSTALL_PYTHON ${TOP_SIM_INSTALL_LIB}/python3/dist-packages)
 endif()
+enable_testing()
+# JUnit XML of the core's test suites (ctest; scripts/test.sh counts the cases). Not catkin's test_results, which
+# run_tests empties before the ROS tests run.
+set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the core's tests")
+# Installed binaries find the installed libraries relative to themselves (a clean environment, any prefix).
+file(RELATIVE_PATH TOP_SIM_BIN_TO_LIB /${TOP_SIM_INSTALL_BIN} /${TOP_SIM_INSTALL_LIB})
+set(CMAKE_INSTALL_RPATH "$ORIGIN/${TOP_SIM_BIN_TO_LIB}")
 set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/${TOP_SIM_INSTALL_BIN})
@@ -35,3 +36,11 @@ file(MAKE_DIRECTORY ${TOP_SIM_BUILD_SHARE})
 if(NOT EXISTS ${TOP_SIM_BUILD_SHARE}/config)
   file(CREATE_LINK ${CMAKE_CURRENT_SOURCE_DIR}/config ${TOP_SIM_BUILD_SHARE}/config SYMBOLIC)
 endif()
+
+# A target only the tests need: built by default in the plain build, by catkin's `tests` target in the catkin one.
+function(top_sim_test_only target)
+  if(TOP_SIM_ROS)
+    set_target_properties(${target} PROPERTIES EXCLUDE_FROM_ALL TRUE)
+    add_dependencies(tests ${target})
+  endif()
+endfunction()

@@ -12,7 +12,7 @@ if(TOP_SIM_PEER_MUJOCO)
     target_include_directories(peer_mujoco PRIVATE ${MUJOCO_INCLUDE_DIR})
     target_link_libraries(peer_mujoco top_sim_core ${MUJOCO_LIBRARY})
     target_compile_definitions(peer_mujoco PRIVATE TOP_SIM_PEER_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config")
-    if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
+    if(TOP_SIM_TESTS)
       # Agreement only, no timing: the initial-state mapping, the reference, MuJoCo within 0.2 mm (about 0.5 s).
       add_test(NAME peer_mujoco_check COMMAND peer_mujoco --check)
       # Physics only (issue 34 item 4): the tutorial tippe top inverts onto its stem; Euler's disk holds its steady

@@ -34,10 +34,12 @@ set_target_properties(top_sim_python PROPERTIES OUTPUT_NAME _core
   LIBRARY_OUTPUT_DIRECTORY ${_python_dir} INSTALL_RPATH "$ORIGIN/${_python_to_lib}")
 install(TARGETS top_sim_python LIBRARY DESTINATION ${TOP_SIM_INSTALL_PYTHON}/top_sim)
 
-if(TOP_SIM_TESTS AND NOT TOP_SIM_ROS)
+if(TOP_SIM_TESTS)
+  # The package's root on sys.path: the plain build's python/, or catkin's devel space (sources, msg and _core).
+  get_filename_component(_python_root ${_python_dir} DIRECTORY)
   add_test(NAME python_tests
     COMMAND ${Python3_EXECUTABLE} -m pytest -q -p no:cacheprovider ${CMAKE_CURRENT_SOURCE_DIR}/test/python
             --junitxml=${TOP_SIM_TEST_RESULTS}/python_tests.xml)
   set_tests_properties(python_tests PROPERTIES
-    ENVIRONMENT "PYTHONPATH=${PROJECT_BINARY_DIR}/python;TOP_SIM_RUN_BINARY=$<TARGET_FILE:top_sim_run>;TOP_SIM_SWEEP_BINARY=$<TARGET_FILE:top_sim_sweep>")
+    ENVIRONMENT "PYTHONPATH=${_python_root};TOP_SIM_RUN_BINARY=$<TARGET_FILE:top_sim_run>;TOP_SIM_SWEEP_BINARY=$<TARGET_FILE:top_sim_sweep>")
 endif()

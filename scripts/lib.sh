@@ -53,18 +53,13 @@ top_sim_catkin_make() {
   (cd "$TOP_SIM_WS" && catkin_make "${TOP_SIM_CMAKE_ARGS[@]}" "$@")
 }
 
-# The core on its own: configures (plain CMake, TOP_SIM_ROS=OFF) and builds everything in $TOP_SIM_BUILD.
-top_sim_plain_build() {
-  top_sim_log "plain CMake build of the core in $TOP_SIM_BUILD (-j$TOP_SIM_JOBS)"
-  cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD" -DTOP_SIM_ROS=OFF "${TOP_SIM_CMAKE_ARGS[@]}" >/dev/null &&
-    cmake --build "$TOP_SIM_BUILD" -j"$TOP_SIM_JOBS"
-}
-
-# The core's tests under AddressSanitizer + UndefinedBehaviorSanitizer: a second plain build in
-# $TOP_SIM_BUILD-sanitize (RelWithDebInfo, so a report names file and line).
+# The core's tests under AddressSanitizer + UndefinedBehaviorSanitizer: a plain build in $TOP_SIM_BUILD-sanitize,
+# -O1 -g1: line tables, so a report names file and line, at less than half the compile time of -O2 -g (fit.cpp:
+# 44 s against 110 s).
 top_sim_sanitized_build() {
   top_sim_log "AddressSanitizer + UBSan build of the core's tests in $TOP_SIM_BUILD-sanitize (-j$TOP_SIM_JOBS)"
   cmake -S "$TOP_SIM_REPO" -B "$TOP_SIM_BUILD-sanitize" -DTOP_SIM_ROS=OFF -DTOP_SIM_PYTHON=OFF \
-    -DTOP_SIM_SANITIZE=address,undefined -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null &&
+    -DTOP_SIM_SANITIZE=address,undefined -DCMAKE_BUILD_TYPE=RelWithDebInfo \
+    -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" >/dev/null &&
     cmake --build "$TOP_SIM_BUILD-sanitize" -j"$TOP_SIM_JOBS" --target top_sim_core_tests top_sim_run top_sim_sweep top_sim_stability
 }

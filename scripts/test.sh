@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Runs the whole test suite, installing and building first if needed:
-#   1. the plain CMake build of the core (-DTOP_SIM_ROS=OFF, in $TOP_SIM_BUILD): GoogleTest, pytest of the Python
-#      module and the install/find_package check, through ctest;
-#   1b. the core's GoogleTest suite again under AddressSanitizer + UBSan (TOP_SIM_SANITIZERS=0 skips it);
-#   2. the catkin package (node, messages): its gtests and rostests, through catkin's run_tests.
+# Runs the whole test suite, installing and building first if needed. Two builds, one per configuration:
+#   1. the catkin package in Release (scripts/build.sh, as quickstart.sh builds it: the core, its tools and Python
+#      module, the node), then `catkin_make tests` (the core's GoogleTest suite, the header check, the ROS tests);
+#   2. the core's tests through ctest in that build (GoogleTest in shards, pytest of the Python module, the
+#      install/find_package check, the MuJoCo and LCM checks), two at a time;
+#   3. the core's GoogleTest suite again under AddressSanitizer + UBSan, a plain CMake build without ROS
+#      (TOP_SIM_SANITIZERS=0 skips it), in two shards at once;
+#   4. the ROS package's gtests and rostests through catkin's run_tests, one at a time.
 # Prints every test case, a summary, and as the last line `N passed, N failed`.
 # Exit 0 only if the builds succeeded, at least one test ran, and no test failed or errored.
 set -euo pipefail
@@ -12,47 +15,26 @@ source "$(dirname "$0")/lib.sh"
 status=0   # becomes 1 on any failure; the counts line is printed in every case
 sanitizer_failed=0
 timeout_s=${TOP_SIM_TEST_TIMEOUT:-3000}
-plain_results=$TOP_SIM_BUILD/test_results
 mkdir -p "$TOP_SIM_WS"
 TOP_SIM_WS=$(cd "$TOP_SIM_WS" && pwd -P)
-results=$TOP_SIM_WS/build/test_results
-rm -rf "$results" "$plain_results"   # only this run's results are counted
+results=$TOP_SIM_WS/build/test_results          # catkin's run_tests
+package_build=$TOP_SIM_WS/build/top_sim         # the package's own build directory in the workspace
+core_results=$package_build/test_results        # ctest's and the sanitized suite's (TOP_SIM_TEST_RESULTS)
+rm -rf "$results" "$core_results"   # only this run's results are counted
 
 if ! bash "$TOP_SIM_REPO/scripts/install_deps.sh"; then
   top_sim_log "INSTALLING THE DEBIAN PACKAGES FAILED"; status=1
 fi
 
-# ---- 1. the core on its own: plain CMake and ctest ------------------------------------------------------------
-if [ "$status" -eq 0 ]; then
-  if ! top_sim_plain_build; then
-    top_sim_log "PLAIN CMAKE BUILD FAILED"; status=1
-  else
-    top_sim_log "running the core's tests (ctest in $TOP_SIM_BUILD)"
-    # ctest's verdict is read from the JUnit XML below; a non-zero exit here is a failing test, already counted.
-    timeout --kill-after=30 "$timeout_s" ctest --test-dir "$TOP_SIM_BUILD" --output-on-failure \
-      --output-junit "$plain_results/ctest.xml" \
-      || top_sim_log "ctest reported failures (listed below)"
-  fi
-fi
-
-# ---- 1b. the core's tests again under AddressSanitizer + UBSan (TOP_SIM_SANITIZERS=0 skips) ---------------------
-if [ "$status" -eq 0 ] && [ "${TOP_SIM_SANITIZERS:-1}" != 0 ]; then
-  if ! top_sim_sanitized_build; then
-    top_sim_log "SANITIZER BUILD FAILED"; status=1
-  else
-    top_sim_log "running the core's tests under AddressSanitizer + UBSan"
-    # A sanitizer report aborts the test binary: its XML is then missing or failing, and counted below.
-    mkdir -p "$plain_results/sanitized"
-    timeout --kill-after=30 "$timeout_s" "$TOP_SIM_BUILD-sanitize/bin/top_sim_core_tests" \
-      --gtest_output="xml:$plain_results/sanitized/core_tests_asan_ubsan.xml" >"$plain_results/sanitized/log.txt" 2>&1 \
-      || { top_sim_log "SANITIZED CORE TESTS FAILED (last lines of the log:)"; tail -40 "$plain_results/sanitized/log.txt" >&2
-           sanitizer_failed=1; }   # the ROS stage still runs; the verdict below counts this
-  fi
-fi
-
-# ---- 2. the ROS package: catkin_make and run_tests ------------------------------------------------------------
+# ---- 1. the catkin package in Release, then its tests' binaries -------------------------------------------------
 if [ "$status" -eq 0 ] && ! TOP_SIM_SKIP_DEPS=1 bash "$TOP_SIM_REPO/scripts/build.sh"; then
   top_sim_log "BUILD FAILED"; status=1
+fi
+if [ "$status" -eq 0 ]; then
+  top_sim_log "building the tests (catkin_make tests: the core's and the ROS package's)"
+  if ! top_sim_catkin_make -j"$TOP_SIM_JOBS" tests; then
+    top_sim_log "BUILD FAILED (tests)"; status=1
+  fi
 fi
 
 # LCM's default UDP multicast URL needs a multicast route; a sandbox without one gets it on loopback.
@@ -60,16 +42,46 @@ if [ "$(id -u)" -eq 0 ] && command -v ip >/dev/null 2>&1 && [ -z "$(ip route sho
   ip route add 224.0.0.0/4 dev lo 2>/dev/null && top_sim_log "added multicast route 224.0.0.0/4 dev lo" || true
 fi
 
+# ---- 2. the core's tests through ctest (catkin's own _ctest_ entries run in step 4) -----------------------------
 if [ "$status" -eq 0 ]; then
-  top_sim_log "building the tests"
-  if ! top_sim_catkin_make -j"$TOP_SIM_JOBS" tests; then
-    top_sim_log "BUILD FAILED (tests)"; status=1
+  top_sim_log "running the core's tests (ctest in $package_build, -j$TOP_SIM_JOBS)"
+  # ctest's verdict is read from the JUnit XML below; a non-zero exit here is a failing test, already counted.
+  timeout --kill-after=30 "$timeout_s" ctest --test-dir "$package_build" -E '^_ctest_' -j"$TOP_SIM_JOBS" \
+    --output-on-failure --output-junit "$core_results/ctest.xml" \
+    || top_sim_log "ctest reported failures (listed below)"
+fi
+
+# ---- 3. the core's tests again under AddressSanitizer + UBSan (TOP_SIM_SANITIZERS=0 skips) ---------------------
+if [ "$status" -eq 0 ] && [ "${TOP_SIM_SANITIZERS:-1}" != 0 ]; then
+  if ! top_sim_sanitized_build; then
+    top_sim_log "SANITIZER BUILD FAILED"; status=1
+  else
+    top_sim_log "running the core's tests under AddressSanitizer + UBSan (2 shards at once)"
+    # A sanitizer report aborts the test binary: its XML is then missing or failing, and counted below.
+    sanitized=$core_results/sanitized
+    mkdir -p "$sanitized"
+    pids=()
+    for shard in 0 1; do
+      mkdir -p "$sanitized/tmp$shard"
+      GTEST_TOTAL_SHARDS=2 GTEST_SHARD_INDEX=$shard TEST_TMPDIR="$sanitized/tmp$shard/" \
+        timeout --kill-after=30 "$timeout_s" "$TOP_SIM_BUILD-sanitize/bin/top_sim_core_tests" \
+        --gtest_output="xml:$sanitized/core_tests_asan_ubsan_$shard.xml" >"$sanitized/log$shard.txt" 2>&1 &
+      pids+=($!)
+    done
+    for shard in 0 1; do
+      if ! wait "${pids[$shard]}"; then
+        top_sim_log "SANITIZED CORE TESTS FAILED (shard $shard; last lines of its log:)"
+        tail -40 "$sanitized/log$shard.txt" >&2
+        sanitizer_failed=1   # the ROS stage still runs; the verdict below counts this
+      fi
+    done
   fi
 fi
 
+# ---- 4. the ROS package's tests: catkin's run_tests --------------------------------------------------------------
 if [ "$status" -eq 0 ]; then
   # One test at a time (-j1): tests share 2 cores, ROS masters and LCM channels. The timeout stops a hung test.
-  top_sim_log "running the tests"
+  top_sim_log "running the ROS package's tests"
   set +e
   timeout --kill-after=30 "$timeout_s" bash -c \
     'source "$1/scripts/lib.sh" && top_sim_catkin_make -j1 run_tests' _ "$TOP_SIM_REPO"
@@ -85,7 +97,7 @@ fi
 
 [ "$sanitizer_failed" -eq 0 ] || status=1
 set +e
-/usr/bin/python3 - "$status" "$plain_results" "$results" <<'PY'
+/usr/bin/python3 - "$status" "$core_results" "$results" <<'PY'
 # Counts test cases in the JUnit XML files of catkin's test_results directory.
 import os, sys
 import xml.etree.ElementTree as ET
@@ -116,7 +128,7 @@ def wrapper_duplicate(path, case, failed):
 passed = failed = skipped = 0
 per_file = []
 for root_dir, path in files:
-    name = ('plain/' if root_dir == root_dirs[0] else 'catkin/') + os.path.relpath(path, root_dir)
+    name = ('core/' if root_dir == root_dirs[0] else 'catkin/') + os.path.relpath(path, root_dir)
     out = ['== %s' % name]
     try:
         tree = ET.parse(path)
