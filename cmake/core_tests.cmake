@@ -38,7 +38,7 @@ if(TOP_SIM_TESTS)
   # Another CMake project links the installed core through find_package(top_sim_core).
   # The installed tools and Python module run in a clean environment (env -i): RPATH and install layout.
   add_test(NAME install_and_find_package COMMAND ${CMAKE_COMMAND}
-    -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR}
+    -DBUILD_DIR=${PROJECT_BINARY_DIR} -DSOURCE_DIR=${CMAKE_CURRENT_SOURCE_DIR} -DINSTALL_PREFIX=${CMAKE_INSTALL_PREFIX}
     -DPYTHON_MODULE=$<TARGET_EXISTS:top_sim_python> -DINSTALL_BIN=${TOP_SIM_INSTALL_BIN}
     -DINSTALL_PYTHON=${TOP_SIM_INSTALL_PYTHON}
     -P ${CMAKE_CURRENT_SOURCE_DIR}/test/consumer/check_install.cmake)

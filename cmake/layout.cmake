@@ -23,9 +23,10 @@ enable_testing()
 # JUnit XML of the core's test suites (ctest; scripts/test.sh counts the cases). Not catkin's test_results, which
 # run_tests empties before the ROS tests run.
 set(TOP_SIM_TEST_RESULTS ${PROJECT_BINARY_DIR}/test_results CACHE PATH "JUnit XML output of the core's tests")
-# Installed binaries find the installed libraries relative to themselves (a clean environment, any prefix).
+# Installed binaries and libraries find the installed libraries relative to themselves (a clean environment, any
+# prefix): from the binaries' directory, and (catkin's layout, lib/top_sim against lib) from the libraries' own.
 file(RELATIVE_PATH TOP_SIM_BIN_TO_LIB /${TOP_SIM_INSTALL_BIN} /${TOP_SIM_INSTALL_LIB})
-set(CMAKE_INSTALL_RPATH "$ORIGIN/${TOP_SIM_BIN_TO_LIB}")
+set(CMAKE_INSTALL_RPATH "$ORIGIN/${TOP_SIM_BIN_TO_LIB};$ORIGIN")
 set(CMAKE_ARCHIVE_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_LIBRARY_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/lib)
 set(CMAKE_RUNTIME_OUTPUT_DIRECTORY ${TOP_SIM_OUTPUT_PREFIX}/${TOP_SIM_INSTALL_BIN})

@@ -1,8 +1,11 @@
 # ctest script: installs the build into a scratch prefix, builds test/consumer against it with
 # find_package(top_sim_core), and runs the consumer (which must find the installed data, not the sources').
-set(prefix ${BUILD_DIR}/test_install)
+# Installed under DESTDIR, not with --prefix: catkin's Python install (setup.py) keeps the configured prefix and
+# honours only DESTDIR. The tree is then used where it lands, away from the configured prefix.
+set(destdir ${BUILD_DIR}/test_install)
+set(prefix ${destdir}${INSTALL_PREFIX})
 set(consumer_build ${BUILD_DIR}/test_consumer)
-file(REMOVE_RECURSE ${prefix} ${consumer_build})
+file(REMOVE_RECURSE ${destdir} ${consumer_build})
 function(run_step)
   execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   message("${out}${err}")
@@ -10,7 +13,7 @@ function(run_step)
     message(FATAL_ERROR "failed (${rc}): ${ARGN}")
   endif()
 endfunction()
-run_step(${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${prefix})
+run_step(${CMAKE_COMMAND} -E env DESTDIR=${destdir} ${CMAKE_COMMAND} --install ${BUILD_DIR})
 run_step(${CMAKE_COMMAND} -S ${SOURCE_DIR}/test/consumer -B ${consumer_build} -DCMAKE_PREFIX_PATH=${prefix}
          -DCMAKE_BUILD_TYPE=Release)
 run_step(${CMAKE_COMMAND} --build ${consumer_build})
