@@ -1,8 +1,10 @@
 # ctest script: installs the build into a scratch prefix, builds test/consumer against it with
 # find_package(top_sim_core), and runs the consumer (which must find the installed data, not the sources').
 # Installed under DESTDIR, not with --prefix: catkin's Python install (setup.py) keeps the configured prefix and
-# honours only DESTDIR. The tree is then used where it lands, away from the configured prefix.
-set(destdir ${BUILD_DIR}/test_install)
+# honours only DESTDIR. The tree is then used where it lands, away from the configured prefix. Outside the sources
+# (the catkin workspace lies in them): rosrun searches the package's directory and would find a second top_sim_node.
+string(MD5 build_tag ${BUILD_DIR})
+set(destdir /tmp/top_sim_install_check_${build_tag})
 set(prefix ${destdir}${INSTALL_PREFIX})
 set(consumer_build ${BUILD_DIR}/test_consumer)
 file(REMOVE_RECURSE ${destdir} ${consumer_build})
@@ -40,3 +42,5 @@ if(PYTHON_MODULE)
        "import top_sim\ntop_sim.Simulator('default').run(0.01)\nprint('top_sim module from', top_sim.__file__)\n")
   run_step(env -i PYTHONPATH=${prefix}/${INSTALL_PYTHON} /usr/bin/python3 ${consumer_build}/import_top_sim.py)
 endif()
+
+file(REMOVE_RECURSE ${destdir})  # kept only after a failure, to look at
