@@ -21,8 +21,8 @@ endif()
 set(TOP_SIM_INSTALLED_HEADERS
   adiabatic.hpp command.hpp command_fields.hpp contact.hpp contact_modes.hpp contact_shapes.hpp cpu_time.hpp
   data_path.hpp dynamics.hpp finite_contact.hpp fit.hpp format.hpp friction.hpp integrators.hpp limits.hpp model.hpp
-  pacing.hpp plane.hpp pose.hpp regime.hpp scene.hpp simulator.hpp snapshot.hpp stability.hpp state.hpp
-  stationary.hpp trajectory.hpp)
+  pacing.hpp plane.hpp pose.hpp regime.hpp scene.hpp scene_error.hpp simulator.hpp snapshot.hpp stability.hpp
+  state.hpp stationary.hpp trajectory.hpp)
 list(TRANSFORM TOP_SIM_INSTALLED_HEADERS PREPEND ${CMAKE_CURRENT_SOURCE_DIR}/include/top_sim/
   OUTPUT_VARIABLE top_sim_installed_header_paths)
 install(FILES ${top_sim_installed_header_paths} DESTINATION ${TOP_SIM_INSTALL_INCLUDE}/top_sim)
