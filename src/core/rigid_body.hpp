@@ -150,7 +150,7 @@ struct RigidBody {
     w = angular_velocity(y);
     u = velocity3(y);
     rho = Eigen::Vector3d(-f * f_hat.x(), -f * f_hat.y(), -R - f * f_hat.z());  // r_t - r_cm
-    inv = inverse_inertia(top);
+    inv = detail::inverse_inertia(top);
     free.g = model.plane.g_plane;
     free.Ii_G = inverse_inertia_gyro(top, inv, f_hat, w, nu);
     centripetal = w.cross(w.cross(f_hat));
