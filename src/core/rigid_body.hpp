@@ -56,10 +56,11 @@ inline Eigen::Vector3d inverse_inertia_gyro(const Top& top, const InverseInertia
 
 // What acts on the body besides its contacts: gravity, and air (section 12: -c v_cm at the centre of mass, -k w),
 // as the centre of mass's acceleration g, the torque-free part I'^-1 G less I'^-1 of air's torque, air's force and
-// torque, and the power air takes.
+// torque, and the power air takes (air's force and torque unset until add_air: the tip sphere's hot path reads
+// them only with air).
 struct FreeMotion {
   Eigen::Vector3d g, Ii_G;
-  Eigen::Vector3d air_force = Eigen::Vector3d::Zero(), air_torque = Eigen::Vector3d::Zero();
+  Eigen::Vector3d air_force, air_torque;
   double air_power = 0.0;
 };
 // Air's force joins gravity and its torque the torque-free part, so every contact solve sees it unchanged.
@@ -75,7 +76,8 @@ inline void add_air(const Air& air, double mass, const InverseInertia& inv, cons
 inline FreeMotion free_motion(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
                               const Eigen::Vector3d& w) {
   const InverseInertia inv = inverse_inertia(model.top);
-  FreeMotion free{model.plane.g_plane, inverse_inertia_gyro(model.top, inv, f_hat, w)};
+  FreeMotion free{model.plane.g_plane, inverse_inertia_gyro(model.top, inv, f_hat, w), Eigen::Vector3d::Zero(),
+                  Eigen::Vector3d::Zero()};
   if (model.air.active()) add_air(model.air, model.top.mass, inv, f_hat, v_cm, w, free);
   return free;
 }
