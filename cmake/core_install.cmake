@@ -4,7 +4,7 @@ install(TARGETS top_sim_core EXPORT top_sim_core_targets
   ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
   LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB}
   INCLUDES DESTINATION ${TOP_SIM_INSTALL_INCLUDE})
-install(TARGETS top_sim_output top_sim_cli_common ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
+install(TARGETS top_sim_output top_sim_studies ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
   LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB})
 install(TARGETS top_sim_run top_sim_sweep top_sim_study top_sim_stability RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
 if(TARGET top_sim_lcm_echo)
