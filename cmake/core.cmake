@@ -16,13 +16,16 @@ target_include_directories(top_sim_output PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src
 # JSON through nlohmann-json and command lines through CLI11, both private: no tool's header includes them.
 target_link_libraries(top_sim_output PUBLIC top_sim_core PRIVATE nlohmann_json::nlohmann_json CLI11::CLI11)
 
-add_library(top_sim_cli_common src/cli/sweep_point.cpp src/cli/sweep_options.cpp src/cli/fit_data.cpp)
-target_link_libraries(top_sim_cli_common PUBLIC top_sim_output PRIVATE nlohmann_json::nlohmann_json)
+# The studies: a sweep's point and flags, a fit's data. Library code the command-line tools and Python both link,
+# so src/cli holds adapters only.
+add_library(top_sim_studies src/studies/sweep_point.cpp src/studies/sweep_options.cpp src/studies/fit_data.cpp)
+target_include_directories(top_sim_studies PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/src/studies)
+target_link_libraries(top_sim_studies PUBLIC top_sim_output PRIVATE nlohmann_json::nlohmann_json)
 # Position-independent: the Python module (a shared object) links the sweep's code (cmake/python.cmake).
-set_target_properties(top_sim_output top_sim_cli_common PROPERTIES POSITION_INDEPENDENT_CODE ON)
+set_target_properties(top_sim_output top_sim_studies PROPERTIES POSITION_INDEPENDENT_CODE ON)
 
 add_executable(top_sim_run src/cli/top_sim_run.cpp)
-target_link_libraries(top_sim_run top_sim_cli_common)
+target_link_libraries(top_sim_run top_sim_studies)
 # Optional LCM bridge: `top_sim_run --lcm URL` streams in real time without ROS.
 include(${CMAKE_CURRENT_LIST_DIR}/lcm.cmake)
 if(TARGET top_sim_lcm)

@@ -4,7 +4,7 @@ install(TARGETS top_sim_core EXPORT top_sim_core_targets
   ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
   LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB}
   INCLUDES DESTINATION ${TOP_SIM_INSTALL_INCLUDE})
-install(TARGETS top_sim_output top_sim_cli_common ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
+install(TARGETS top_sim_output top_sim_studies ARCHIVE DESTINATION ${TOP_SIM_INSTALL_LIB}
   LIBRARY DESTINATION ${TOP_SIM_INSTALL_LIB})
 install(TARGETS top_sim_run top_sim_sweep top_sim_study top_sim_stability RUNTIME DESTINATION ${TOP_SIM_INSTALL_BIN})
 if(TARGET top_sim_lcm_echo)
@@ -21,8 +21,8 @@ endif()
 set(TOP_SIM_INSTALLED_HEADERS
   adiabatic.hpp command.hpp command_fields.hpp contact.hpp contact_modes.hpp contact_shapes.hpp cpu_time.hpp
   data_path.hpp dynamics.hpp finite_contact.hpp fit.hpp format.hpp friction.hpp integrators.hpp limits.hpp model.hpp
-  pacing.hpp plane.hpp pose.hpp regime.hpp scene.hpp simulator.hpp snapshot.hpp stability.hpp state.hpp
-  stationary.hpp trajectory.hpp)
+  pacing.hpp plane.hpp pose.hpp regime.hpp scene.hpp scene_error.hpp simulator.hpp snapshot.hpp stability.hpp
+  state.hpp stationary.hpp trajectory.hpp)
 list(TRANSFORM TOP_SIM_INSTALLED_HEADERS PREPEND ${CMAKE_CURRENT_SOURCE_DIR}/include/top_sim/
   OUTPUT_VARIABLE top_sim_installed_header_paths)
 install(FILES ${top_sim_installed_header_paths} DESTINATION ${TOP_SIM_INSTALL_INCLUDE}/top_sim)

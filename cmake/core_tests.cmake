@@ -6,7 +6,7 @@ if(TOP_SIM_TESTS)
   file(GLOB TOP_SIM_CORE_TESTS CONFIGURE_DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/test/core/*.cpp)
   add_executable(top_sim_core_tests ${TOP_SIM_CORE_TESTS})
   top_sim_test_only(top_sim_core_tests)
-  target_link_libraries(top_sim_core_tests top_sim_cli_common GTest::gtest GTest::gtest_main)
+  target_link_libraries(top_sim_core_tests top_sim_studies GTest::gtest GTest::gtest_main)
   target_compile_definitions(top_sim_core_tests PRIVATE
     TOP_SIM_TEST_CONFIG_DIR="${CMAKE_CURRENT_SOURCE_DIR}/config"
     TOP_SIM_TEST_RUN_BINARY="$<TARGET_FILE:top_sim_run>"
@@ -47,7 +47,7 @@ endif()
 # model.kind auto against the full model (docs/analysis.md): a plain program, built with or without benchmark.
 if(NOT TOP_SIM_ROS)
   add_executable(auto_bench ${CMAKE_CURRENT_SOURCE_DIR}/bench/auto_bench.cpp)
-  target_link_libraries(auto_bench top_sim_cli_common)
+  target_link_libraries(auto_bench top_sim_studies)
 endif()
 
 find_package(benchmark QUIET)
@@ -57,6 +57,6 @@ if(benchmark_FOUND)
   foreach(src ${TOP_SIM_BENCH_SOURCES})
     get_filename_component(name ${src} NAME_WE)
     add_executable(${name} ${src})
-    target_link_libraries(${name} top_sim_cli_common benchmark::benchmark)
+    target_link_libraries(${name} top_sim_studies benchmark::benchmark)
   endforeach()
 endif()

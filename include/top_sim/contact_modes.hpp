@@ -62,6 +62,14 @@ struct ModeMargins {
                             // shape's touchdown when <= 0)
 };
 
+// The contact force of one right-hand side, kept so that the event margins at a step's end can reuse the
+// evaluation an FSAL method (dopri5) has just made there (dynamics.hpp's derivative writes it).
+struct ContactForceRecord {
+  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // F (N = F.z())
+  double drilling_torque = 0.0;                      // M_n on a patch
+  double painleve = ModeMargins::kNone;
+};
+
 // Applies the stick impulse P = -K^-1 (v_t, 0) to u, omega and nu (W_diss is booked by the caller); on a patch
 // with a torsional impulse that stops omega_n as well (physics.md section 12).
 void apply_stick_impulse(const Model& model, StateVector& y);

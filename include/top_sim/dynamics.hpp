@@ -64,14 +64,7 @@ double jellett(const Model& model, const StateVector& y);
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out, double cos_max_tilt);
 void evaluate_dynamics(const Model& model, ContactMode mode, const StateVector& y, Dynamics& out);
 
-// The contact force of one right-hand side, kept so that the event margins at a step's end can reuse the
-// evaluation an FSAL method (dopri5) has just made there.
-struct ContactForceRecord {
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();  // F (N = F.z())
-  double drilling_torque = 0.0;                      // M_n on a patch
-  double painleve = ModeMargins::kNone;
-};
-
+// ContactForceRecord: contact_modes.hpp.
 // dy/dt of the full model in `mode` with the model's normal-force choice (allocation-free).
 void derivative(const Model& model, ContactMode mode, const StateVector& y, StateVector& dydt,
                 ContactForceRecord* record = nullptr);

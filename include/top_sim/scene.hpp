@@ -9,6 +9,7 @@
 #include "top_sim/command.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/model.hpp"
+#include "top_sim/scene_error.hpp"
 #include "top_sim/state.hpp"
 
 namespace YAML { class Node; }
@@ -54,13 +55,6 @@ struct Scene {
   std::vector<ScriptedEvent> events;
   double duration = 10.0;           // default run length [s]
   std::vector<std::string> warnings;  // e.g. the friction clamp, said once
-};
-
-// A bad scene: names the file, key, value and allowed range.
-class SceneError : public std::runtime_error {
- public:
-  SceneError(const std::string& file, const std::string& key, const std::string& problem);
-  std::string file, key;
 };
 
 // Loads a scene file; `top` and `friction` may name files in <config>/tops and <config>/planes.

@@ -59,7 +59,7 @@ void apply_contact_impulse(const Model& model, const Eigen::Vector3d& P, StateVe
   // -d omega . f_hat.
   const Eigen::Vector3d d_omega = torsion == 0.0 ? b.inverse_inertia(b.rho.cross(P))
                                                  : b.inverse_inertia(b.rho.cross(P) + Eigen::Vector3d(0, 0, torsion));
-  const Eigen::Vector3d d_u = P / b.m - d_omega.cross(b.f * b.f_hat);
+  const Eigen::Vector3d d_u = detail::reference_velocity_change(b.m, b.f, b.f_hat, P, d_omega);
   set_velocity3(y, b.u + d_u);
   set_angular_velocity(y, b.w + d_omega);
   if (model.top.has_rotor) y[idx::nu] -= d_omega.dot(b.f_hat);

@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
-#include "top_sim/scene.hpp"
+#include "top_sim/scene_error.hpp"
 
 #ifndef TOP_SIM_DATA_SUBDIR
 #define TOP_SIM_DATA_SUBDIR "share/top_sim/config"

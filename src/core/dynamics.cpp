@@ -20,12 +20,12 @@ namespace {
 // Section 4: N (1/m - f A) = -n.g + f (C - B) with A = (I'^-1 T x f_hat) . n, T the contact's torque per newton
 // (rho x d on a point); equal to n.b / (n.K d) of section 9. Sets the Painleve margin m (1/m - f A).
 [[gnu::always_inline]] inline double constrained_normal_force(const detail::RigidBody& b, double A, double& painleve) {
-  const double B = b.Ii_G.cross(b.f_hat).z();
+  const double B = b.free.Ii_G.cross(b.f_hat).z();
   const double denominator = 1.0 / b.m - b.f * A;
   painleve = b.m * denominator;
   // Past the Painleve boundary N is meaningless; keep it finite so the fault can be located.
   const double safe = denominator > 1e-6 / b.m ? denominator : 1e-6 / b.m;
-  return (-b.g.z() + b.f * (b.centripetal.z() - B)) / safe;
+  return (-b.free.g.z() + b.f * (b.centripetal.z() - B)) / safe;
 }
 
 // Slipping (sections 3-4): F = N d, d = n - mu t_hat, N the multiplier keeping n . a_m = 0. Sets omega_dot too
@@ -38,12 +38,12 @@ void slipping_force(const Model& model, const detail::RigidBody& b, PointContact
   if (model.normal_force == NormalForceModel::constrained) {
     N = constrained_normal_force(b, Ii_rxd.cross(b.f_hat).z(), painleve);
   } else {
-    N = -b.m * b.g.z();  // static approximation: N = m g cos(alpha)
+    N = -b.m * b.free.g.z();  // static approximation: N = m g cos(alpha)
     painleve = ModeMargins::kNone;
   }
   out.normal_force = N;
   out.contact_force = N * d;
-  out.omega_dot = N * Ii_rxd - b.Ii_G;
+  out.omega_dot = N * Ii_rxd - b.free.Ii_G;
   out.dissipation = out.mu * N * out.contact.t_hat.dot(out.contact.v_t);
 }
 
@@ -58,14 +58,11 @@ void rolling_contact_force(const detail::RigidBody& b, PointContactDynamics& out
 
 // ---- finite contact (physics.md section 12) ----
 
-// Air acts on the body, not at the contact: its force joins gravity and its torque the torque-free part G, so
-// every mode's constraint solve sees it unchanged.
+// Air acts on the body, not at the contact (rigid_body.hpp); the output records its force and torque.
 void add_air(const Model& model, detail::RigidBody& b, ContactDynamics& out) {
-  const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
-  out.air_force = -model.air.drag * v_cm;
-  out.air_torque = -model.air.spin_drag * b.w;
-  b.g += out.air_force / b.m;
-  b.Ii_G -= b.inverse_inertia(out.air_torque);
+  b.add_air(model);
+  out.air_force = b.free.air_force;
+  out.air_torque = b.free.air_torque;
 }
 
 // Rolling resistance per newton of normal force: -delta omega_r / sqrt(|omega_r|^2 + omega_eps^2).
@@ -92,9 +89,9 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Conta
   // A of constrained_normal_force is affine in q = F_t / (N |v_t|): the inertia's f_hat part drops out of the
   // cross product with f_hat, (rho x d) x f_hat = d (rho . f_hat) - rho (d . f_hat) for d = (-q v_t, 1), and
   // M_n n adds nothing; so a pass costs no torque image.
-  const double A0 = b.inv_d * (b.rho.dot(b.f_hat) - b.rho.z() * b.f_hat.z() + (resisting ? tau_r.cross(b.f_hat).z() : 0.0));
-  const double A1 = b.inv_d * b.rho.z() * (v_t.x() * b.f_hat.x() + v_t.y() * b.f_hat.y());
-  double N = -b.m * b.g.z(), a = fc.patch_radius;
+  const double A0 = b.inv.d * (b.rho.dot(b.f_hat) - b.rho.z() * b.f_hat.z() + (resisting ? tau_r.cross(b.f_hat).z() : 0.0));
+  const double A1 = b.inv.d * b.rho.z() * (v_t.x() * b.f_hat.x() + v_t.y() * b.f_hat.y());
+  double N = -b.m * b.free.g.z(), a = fc.patch_radius;
   if (fc.hertz) {
     a = N > 0.0 ? hertz_patch_radius(fc, b.R, N) : 0.0;
     if (constrained) {
@@ -119,7 +116,7 @@ void slipping_force_finite(const Model& model, const detail::RigidBody& b, Conta
   out.contact_force = Eigen::Vector3d(-N * law.force_per_speed * v_t.x(), -N * law.force_per_speed * v_t.y(), N);
   out.drilling_torque = N * law.drilling;
   out.couple.z() = out.drilling_torque;
-  out.omega_dot = N * b.inverse_inertia(T) - b.Ii_G;
+  out.omega_dot = N * b.inverse_inertia(T) - b.free.Ii_G;
   out.dissipation = N * law.force_per_speed * v_t.squaredNorm() - out.drilling_torque * omega_n;
   if (resisting) {
     out.couple += N * tau_r;
@@ -140,7 +137,7 @@ StickForce stick_force_finite(const Model& model, const detail::RigidBody& b) {
     return out;
   }
   const Eigen::Vector4d x = stuck_patch_force(K, b.rho, b.inverse_inertia(n), n.dot(b.inverse_inertia(tau_r)),
-                                               b.response_bias(), n.dot(b.Ii_G));
+                                               b.response_bias(), n.dot(b.free.Ii_G));
   out.force = x.head<3>();
   out.drilling_torque = x[3];
   return out;
@@ -195,9 +192,9 @@ void motion(const Model& model, const StateVector& y, MotionOut<kContact>& out, 
       out.dissipation = 0.0;
     }
     if constexpr (kFinite)
-      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force) + out.couple) - b.Ii_G;
+      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force) + out.couple) - b.free.Ii_G;
     else
-      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.Ii_G;
+      out.omega_dot = b.inverse_inertia(b.rho.cross(out.contact_force)) - b.free.Ii_G;
   }
   out.friction_force = Eigen::Vector3d(out.contact_force.x(), out.contact_force.y(), 0.0);
   b.accelerations(out.contact_force, out.omega_dot, out.a_cm, out.a_m);
@@ -205,10 +202,7 @@ void motion(const Model& model, const StateVector& y, MotionOut<kContact>& out, 
   out.nu_dot = model.top.has_rotor ? -b.c * b.nu / b.J - out.omega_dot.dot(b.f_hat) : 0.0;
   out.dissipation += b.c * b.nu * b.nu;
   if constexpr (kExtras) {
-    if (model.air.active()) {
-      const Eigen::Vector3d v_cm = b.u + b.f * b.w.cross(b.f_hat);
-      out.dissipation -= out.air_force.dot(v_cm) + out.air_torque.dot(b.w);
-    }
+    if (model.air.active()) out.dissipation += b.free.air_power;  // -(F_air . v_cm + T_air . w)
   }
   out.psi_dot = spin_phase_rate(b.f_hat, b.w);
 }
@@ -325,8 +319,7 @@ StickForce stick_force(const Model& model, const StateVector& y) {
   }
   if (point_contact(model)) return {rolling_force(contact_response(model, y)), 0.0};
   detail::RigidBody b(model, y);
-  Dynamics scratch;
-  if (model.air.active()) add_air(model, b, scratch);
+  if (model.air.active()) b.add_air(model);
   return stick_force_finite(model, b);
 }
 

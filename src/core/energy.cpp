@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "rigid_body.hpp"
 #include "shape_motion.hpp"
 
 namespace top_sim {
@@ -15,11 +16,8 @@ namespace {
   const double nu = top.has_rotor ? y[idx::nu] : 0.0;
   const Eigen::Vector3d w = angular_velocity(y);
   const Eigen::Vector3d v_cm = velocity3(y) + w.cross(top.com_offset * f_hat);
-  const double w_f = w.dot(f_hat);
-  const double I_fs = top.inertia_axial - J;
-  const double shell = top.inertia_transverse * (w.squaredNorm() - w_f * w_f) + I_fs * w_f * w_f;
-  const double Omega = w_f + nu;
-  return 0.5 * top.mass * v_cm.squaredNorm() + 0.5 * shell + 0.5 * J * Omega * Omega;
+  const double Omega = w.dot(f_hat) + nu;
+  return detail::body_kinetic_energy(top, v_cm, f_hat, w) + 0.5 * J * Omega * Omega;
 }
 }  // namespace
 

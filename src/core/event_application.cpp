@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "simulator_impl.hpp"
+#include "top_sim/simulator.hpp"  // its public constants: the mode switches kept
 #include "top_sim/format.hpp"
 #include "impact.hpp"
 #include "shape_motion.hpp"

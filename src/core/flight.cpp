@@ -4,6 +4,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "rigid_body.hpp"
+
 namespace top_sim {
 
 namespace {
@@ -106,11 +108,11 @@ FlightMotion flight_motion(const Model& model, const StateVector& y, double t) {
   const Eigen::Vector3d tip(y[idx::x], y[idx::x + 1], top.tip_radius + y[idx::gap]);
   m.r_cm = tip + top.com_offset * f_hat;
   m.v_cm = velocity3(y) + w.cross(top.com_offset * f_hat);
-  // Section 6: L = I_d omega + ((I_f' - I_d) w_f + J (w_f + nu)) f_hat, constant in a torque-free flight.
+  // Section 6: L_total, constant in a torque-free flight.
   const double J = top.has_rotor ? top.rotor.inertia_axial : 0.0;
   const double nu = top.has_rotor ? y[idx::nu] : 0.0;
   const double I_d = top.inertia_transverse, w_f = w.dot(f_hat);
-  const Eigen::Vector3d L = I_d * w + ((shell_axial_inertia(top) - I_d) * w_f + J * (w_f + nu)) * f_hat;
+  const Eigen::Vector3d L = detail::total_angular_momentum(top, f_hat, w, nu);
   m.axial = L.dot(f_hat);
   m.L_over_Id = L / I_d;
   m.rate = L.norm() / I_d;

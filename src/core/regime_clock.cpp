@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "simulator_impl.hpp"
+#include "top_sim/simulator.hpp"  // its public constants: the regime cadence
 
 namespace top_sim {
 

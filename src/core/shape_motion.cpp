@@ -14,16 +14,17 @@
 #include "top_sim/friction.hpp"
 #include "orientation.hpp"
 #include "patch_law.hpp"
+#include "rigid_body.hpp"
 
 namespace top_sim {
 
 namespace {
 
-// I^-1 v for the axisymmetric inertia about f_hat.
-Eigen::Vector3d inverse_inertia(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& v) {
-  const double inv_d = 1.0 / top.inertia_transverse, inv_f = 1.0 / top.inertia_axial;
-  return inv_d * v + (inv_f - inv_d) * f_hat.dot(v) * f_hat;
-}
+// The body's kernel (rigid_body.hpp): a body of shapes has no rotor, so I' = I.
+using detail::cross_response;
+using detail::free_motion;
+using detail::FreeMotion;
+using detail::inverse_inertia_times;
 
 // The slip of section 3 and the friction direction: u is the contact point's own velocity v_cm + r_k', and the
 // rolling speed the part of it the rotation carries, |r_k' - w x r_k| (R |w x n| for a sphere).
@@ -40,42 +41,9 @@ double slip_and_friction(const Model& model, const Eigen::Vector3d& v_cm, const 
   return speed_sum;
 }
 
-// d/dt v_c's bias b = -(g + r x I^-1 G + w x r') at one contact, and I^-1 G.
-Eigen::Vector3d inverse_inertia_gyro(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
-  const Eigen::Vector3d L = top.inertia_transverse * w + (top.inertia_axial - top.inertia_transverse) * w.dot(f_hat) * f_hat;
-  return inverse_inertia(top, f_hat, w.cross(L));
-}
-// What acts on the body besides its contacts: gravity, and air (physics.md section 12: -c v_cm at the centre of
-// mass, -k w), as the centre of mass's acceleration g, the torque-free part I^-1 G less I^-1 of air's torque, and
-// the power air takes.
-struct FreeMotion {
-  Eigen::Vector3d g, Ii_G;
-  double air_power = 0.0;
-};
-FreeMotion free_motion(const Model& model, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
-                       const Eigen::Vector3d& w) {
-  FreeMotion free{model.plane.g_plane, inverse_inertia_gyro(model.top, f_hat, w), 0.0};
-  if (!model.air.active()) return free;
-  const Eigen::Vector3d force = -model.air.drag * v_cm, torque = -model.air.spin_drag * w;
-  free.g += force / model.top.mass;
-  free.Ii_G -= inverse_inertia(model.top, f_hat, torque);
-  free.air_power = -(force.dot(v_cm) + torque.dot(w));
-  return free;
-}
-
+// d/dt v_c's bias b = -(g + r x I^-1 G + w x r') at one contact.
 Eigen::Vector3d response_bias(const FreeMotion& free, const ShapePoint& p, const Eigen::Vector3d& w) {
   return -(free.g + p.r.cross(free.Ii_G) + w.cross(p.r_rate));
-}
-
-// K_kj = (1/m) 1 - [r_k]x I^-1 [r_j]x: d/dt v_k per newton at contact j.
-Eigen::Matrix3d cross_response(const Top& top, const Eigen::Vector3d& f_hat, const Eigen::Vector3d& r_k,
-                               const Eigen::Vector3d& r_j) {
-  Eigen::Matrix3d K;
-  for (int j = 0; j < 3; ++j) {
-    const Eigen::Vector3d unit = Eigen::Vector3d::Unit(j);
-    K.col(j) = unit / top.mass - r_k.cross(inverse_inertia(top, f_hat, r_j.cross(unit)));
-  }
-  return K;
 }
 
 // One shape slipping on its patch (physics.md section 12 at the shape's lowest point): F = N d with
@@ -87,7 +55,7 @@ void slipping_on_patch(const Model& model, const ContactShape& shape, const Eige
                        const Eigen::Vector3d& b, const Eigen::Vector3d& g, const Eigen::Vector3d& w,
                        const Eigen::Vector3d& f_hat, double speed_sum, ShapeMotion& out) {
   const FiniteContact& fc = model.finite_contact;
-  const Eigen::Vector3d r_x_Ii_n = out.point.r.cross(inverse_inertia(model.top, f_hat, Eigen::Vector3d::UnitZ()));
+  const Eigen::Vector3d r_x_Ii_n = out.point.r.cross(inverse_inertia_times(model.top, f_hat, Eigen::Vector3d::UnitZ()));
   const double vt = out.v_t.norm(), omega_n = w.z();
   double N = -model.top.mass * g.z();
   PatchLaw law;
@@ -112,8 +80,8 @@ void stuck_on_patch(const Model& model, const ContactShape& shape, const Eigen::
                     const Eigen::Vector3d& Ii_G, const Eigen::Vector3d& tau_r, const Eigen::Vector3d& f_hat,
                     ShapeMotion& out) {
   const Eigen::Vector3d n = Eigen::Vector3d::UnitZ();
-  const Eigen::Vector4d x = stuck_patch_force(K, out.point.r, inverse_inertia(model.top, f_hat, n),
-                                              n.dot(inverse_inertia(model.top, f_hat, tau_r)), b, n.dot(Ii_G));
+  const Eigen::Vector4d x = stuck_patch_force(K, out.point.r, inverse_inertia_times(model.top, f_hat, n),
+                                              n.dot(inverse_inertia_times(model.top, f_hat, tau_r)), b, n.dot(Ii_G));
   out.force = x.head<3>();
   out.normal_force = out.force.z();
   out.mu = out.normal_force > 0.0 ? std::hypot(out.force.x(), out.force.y()) / out.normal_force : 0.0;
@@ -142,7 +110,7 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   const double delta = mode == ContactMode::flight ? 0.0 : model.finite_contact.rolling_resistance;
   const Eigen::Vector3d tau_r = delta > 0.0 ? rolling_resistance_per_newton(delta, w) : Eigen::Vector3d::Zero();
   Eigen::Matrix3d K = cross_response(top, f_hat, p.r, p.r);
-  if (delta > 0.0) K.col(2) -= p.r.cross(inverse_inertia(top, f_hat, tau_r));
+  if (delta > 0.0) K.col(2) -= p.r.cross(inverse_inertia_times(top, f_hat, tau_r));
   if (mode == ContactMode::slipping && model.finite_contact.has_patch()) {
     slipping_on_patch(model, shape, K, b, free.g, w, f_hat, speed_sum, out);
   } else if (mode == ContactMode::slipping) {
@@ -162,7 +130,7 @@ ShapeMotion shape_motion(const Model& model, const ContactShape& shape, ContactM
   }
   out.a_cm = free.g + out.force / top.mass;
   const Eigen::Vector3d couple = out.normal_force * tau_r + Eigen::Vector3d(0.0, 0.0, out.drilling_torque);
-  out.omega_dot = inverse_inertia(top, f_hat, p.r.cross(out.force) + couple) - free.Ii_G;
+  out.omega_dot = inverse_inertia_times(top, f_hat, p.r.cross(out.force) + couple) - free.Ii_G;
   // A stuck patch does no work but on a residual pivoting (omega_n ~ 0); the slipping patch's is in out already.
   if (mode == ContactMode::rolling) out.dissipation -= out.drilling_torque * w.z();
   out.dissipation += free.air_power - out.normal_force * tau_r.dot(w);
@@ -219,7 +187,7 @@ void stuck_pair(const Model& model, const FreeMotion& free, const Eigen::Vector3
                 const std::array<ContactMode, 2>& modes, const Eigen::Vector3d& v_cm, const Eigen::Vector3d& f_hat,
                 const Eigen::Vector3d& w, TwoShapeMotion& out) {
   const Top& top = model.top;
-  const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
+  const Eigen::Vector3d Ii_tau = inverse_inertia_times(top, f_hat, tau_r);
   Eigen::Matrix<double, 6, 6> K;
   Eigen::Matrix<double, 6, 1> b;
   pair_response(top, f_hat, w, free, out.point, Ii_tau, K, b);
@@ -261,7 +229,8 @@ void stuck_pair(const Model& model, const FreeMotion& free, const Eigen::Vector3
       out.mu[k] = std::hypot(out.force[k].x(), out.force[k].y()) / out.normal_force[k];
   }
   const double N = out.normal_force[0] + out.normal_force[1];
-  out.omega_dot = inverse_inertia(top, f_hat, out.point[0].r.cross(out.force[0]) + out.point[1].r.cross(out.force[1])) +
+  out.omega_dot =
+      inverse_inertia_times(top, f_hat, out.point[0].r.cross(out.force[0]) + out.point[1].r.cross(out.force[1])) +
                   N * Ii_tau - free.Ii_G;
 }
 
@@ -288,8 +257,8 @@ void both_slipping(const Model& model, const std::array<ContactShape, 2>& shapes
     out.slip[k] = one.slip;
     rhs[k] = response_bias(free, out.point[k], w).z();
   }
-  const Eigen::Vector3d Ii_n = inverse_inertia(top, f_hat, Eigen::Vector3d::UnitZ());
-  const Eigen::Vector3d Ii_tau = inverse_inertia(top, f_hat, tau_r);
+  const Eigen::Vector3d Ii_n = inverse_inertia_times(top, f_hat, Eigen::Vector3d::UnitZ());
+  const Eigen::Vector3d Ii_tau = inverse_inertia_times(top, f_hat, tau_r);
   Eigen::Matrix2d A;
   for (int pass = fc.hertz ? 0 : 1; pass < 2; ++pass) {
     for (int k = 0; k < 2; ++k) {
@@ -308,7 +277,7 @@ void both_slipping(const Model& model, const std::array<ContactShape, 2>& shapes
         out.mu[k] = friction_coefficient(model.friction, out.slip[k]);
         d[k] = Eigen::Vector3d::UnitZ() - out.mu[k] * t_hat[k];
       }
-      Ii_rxd[k] = inverse_inertia(top, f_hat, out.point[k].r.cross(d[k])) + Ii_tau + drilling[k] * Ii_n;
+      Ii_rxd[k] = inverse_inertia_times(top, f_hat, out.point[k].r.cross(d[k])) + Ii_tau + drilling[k] * Ii_n;
     }
     for (int k = 0; k < 2; ++k)
       for (int j = 0; j < 2; ++j) A(k, j) = d[j].z() / top.mass - out.point[k].r.cross(Ii_rxd[j]).z();
@@ -456,8 +425,10 @@ void apply_shape_impulse(const Model& model, std::size_t shape, const Eigen::Vec
   const Eigen::Vector3d r_touching = shape_point(touching_shape(model), b.f_hat, b.w).r;
   // dv_cm = P / m, I d omega = r x P + Q n (a patch's torsional impulse); u = v_cm - f omega x f_hat; gap_rate is
   // the touching shape's n . v_k.
-  const Eigen::Vector3d d_omega = inverse_inertia(model.top, b.f_hat, r.cross(P) + Eigen::Vector3d(0.0, 0.0, torsion));
-  const Eigen::Vector3d d_u = P / model.top.mass - d_omega.cross(model.top.com_offset * b.f_hat);
+  const Eigen::Vector3d d_omega =
+      inverse_inertia_times(model.top, b.f_hat, r.cross(P) + Eigen::Vector3d(0.0, 0.0, torsion));
+  const Eigen::Vector3d d_u =
+      detail::reference_velocity_change(model.top.mass, model.top.com_offset, b.f_hat, P, d_omega);
   y[idx::u] += d_u.x();
   y[idx::u + 1] += d_u.y();
   y[idx::gap_rate] += (P / model.top.mass + d_omega.cross(r_touching)).z();
@@ -468,7 +439,7 @@ void apply_shape_stick_impulse(const Model& model, StateVector& y) {
   const BodyView b = body_view(model, y);
   const Eigen::Vector3d r = shape_point(touching_shape(model), b.f_hat, b.w).r;
   const Eigen::Vector4d x = stuck_patch_impulse(cross_response(model.top, b.f_hat, r, r), r,
-                                                inverse_inertia(model.top, b.f_hat, Eigen::Vector3d::UnitZ()),
+                                                inverse_inertia_times(model.top, b.f_hat, Eigen::Vector3d::UnitZ()),
                                                 b.v_cm + b.w.cross(r), b.w.z());
   apply_shape_impulse(model, model.shapes.touching, x.head<3>(), y, x[3]);
 }
@@ -510,7 +481,8 @@ void write_derivative(const Model& model, ContactMode mode, const StateVector& y
                       const BodyRates& r, const ShapePoint& p, StateVector& dydt) {
   // The reference point r_m = r_cm - f f_hat in the plane: a_m = a_cm - f (w' x f_hat + w x (w x f_hat)).
   const double f = model.top.com_offset;
-  const Eigen::Vector3d a_m = r.a_cm - f * (r.omega_dot.cross(b.f_hat) + b.w.cross(b.w.cross(b.f_hat)));
+  const Eigen::Vector3d centripetal = b.w.cross(b.w.cross(b.f_hat));
+  const Eigen::Vector3d a_m = detail::reference_acceleration(r.a_cm, f, b.f_hat, r.omega_dot, centripetal);
   // The touching shape's gap: g_k'' = n . (a_cm + w' x r_k + w x r_k') in flight (0 in contact, by the constraint).
   const double g_k_acceleration = (r.a_cm + r.omega_dot.cross(p.r) + b.w.cross(p.r_rate)).z();
   const Eigen::Vector3d f_dot = b.w.cross(figure_axis(y));  // keeps |f_hat| in the exact flow
@@ -638,10 +610,7 @@ double shape_energy_scale(const Model& model, const StateVector& y) {
 
 double shape_body_energy(const Model& model, const Eigen::Vector3d& r_cm, const Eigen::Vector3d& v_cm,
                          const Eigen::Vector3d& f_hat, const Eigen::Vector3d& w) {
-  const Top& top = model.top;
-  const double w_f = w.dot(f_hat);
-  const double rotation = top.inertia_transverse * (w.squaredNorm() - w_f * w_f) + top.inertia_axial * w_f * w_f;
-  return 0.5 * top.mass * v_cm.squaredNorm() + 0.5 * rotation - top.mass * model.plane.g_plane.dot(r_cm);
+  return detail::body_kinetic_energy(model.top, v_cm, f_hat, w) - model.top.mass * model.plane.g_plane.dot(r_cm);
 }
 
 }  // namespace top_sim

@@ -11,7 +11,6 @@
 #include "top_sim/contact.hpp"
 #include "top_sim/contact_modes.hpp"
 #include "top_sim/contact_shapes.hpp"
-#include "top_sim/dynamics.hpp"
 #include "top_sim/finite_contact.hpp"
 #include "top_sim/model.hpp"
 #include "top_sim/state.hpp"

@@ -6,7 +6,7 @@
 //   event_location.cpp     the first event on the step's dense output, located by bisection
 //   regime_clock.cpp       the regime's points up to that instant (and auto's handover, auto_handover.cpp)
 //   event_application.cpp the event applied: a mode switch, an impact or a fault
-//   sample.cpp             what a reader sees: the sample of the committed state, analysed on the first read
+//   sample_stage.cpp       what a reader sees: the sample of the committed state, analysed on the first read
 // commit() is the one place a new state and time take effect, and so the one place derived values go stale.
 #pragma once
 
@@ -28,7 +28,6 @@
 #include "flight.hpp"
 #include "top_sim/integrators.hpp"
 #include "top_sim/scene.hpp"
-#include "top_sim/simulator.hpp"
 #include "top_sim/snapshot.hpp"
 #include "top_sim/stationary.hpp"
 

@@ -14,7 +14,7 @@
 #include <random>
 #include <sstream>
 
-#include "../../src/cli/fit_data.hpp"
+#include "../../src/studies/fit_data.hpp"
 #include "cli_util.hpp"
 #include "test_util.hpp"
 #include "top_sim/fit.hpp"

@@ -1,5 +1,5 @@
 // Paper Fig. 4 analogue: tan(phi*/2) against tan(alpha), measured by top_sim_sweep's per-point code
-// (src/cli/sweep_point.cpp) and compared with physics.md section 5's analytic branches, computed here.
+// (src/studies/sweep_point.cpp) and compared with physics.md section 5's analytic branches, computed here.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-#include "../../src/cli/sweep_point.hpp"
+#include "../../src/studies/sweep_point.hpp"
 #include "top_sim/friction.hpp"
 
 namespace {

@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include "../../src/cli/sweep_options.hpp"
-#include "../../src/cli/sweep_point.hpp"
+#include "../../src/studies/sweep_options.hpp"
+#include "../../src/studies/sweep_point.hpp"
 #include "../../src/output/arguments.hpp"
 #include "top_sim/model.hpp"
 

@@ -1,8 +1,8 @@
 """python3 -m top_sim.sweep: top_sim_sweep's grid (same flags, same CSV rows) on a Dask cluster, and Monte Carlo.
 
-Every point runs the C++ sweep point of top_sim_sweep (src/cli/sweep_point.cpp, bound as top_sim._core), so a row
+Every point runs the C++ sweep point of top_sim_sweep (src/studies/sweep_point.cpp, bound as top_sim._core), so a row
 here equals top_sim_sweep's row of the same point (but for cpu_seconds). The flags are parsed by the same C++ parser
-(src/cli/sweep_options.cpp): the same errors. docs/studies.md describes the options, the cluster and the costs.
+(src/studies/sweep_options.cpp): the same errors. docs/studies.md describes the options, the cluster and the costs.
 Exit status: 0 ok, 2 bad argument, 3 some point ended in a contact fault (its row says so), 4 the cluster failed
 (no scheduler, no worker, a point lost on every worker it ran on), 130 interrupted (the file keeps every row so far).
 """
