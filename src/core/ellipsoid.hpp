@@ -37,7 +37,7 @@ struct CurvatureRadii {
   double r2 = 0.0;
 };
 
-// The radii are the eigenvalues of -dp/dn_b on the tangent plane (the support function's Hessian there).
+// The radii are the eigenvalues of -dp/dn_b (minus the support height's Hessian) on the tangent plane.
 CurvatureRadii ellipsoid_curvature_radii(const Ellipsoid& e, const Eigen::Vector3d& n_b);
 
 // The Hertz radius of a patch at a contact of two radii (physics.md sections 12 and 14): sqrt(R1 R2).

@@ -298,4 +298,39 @@ TEST(EllipsoidTest, RollingConditionKeepsTheContactAtRest) {
               "term order <= %.3f\n", least_order, worst_size, least_gap_order, greatest_order_without);
 }
 
+// 5. The solver's split of section 14.1: with Newton-Euler (m a = m g + F, J Omega' + Omega x J Omega = R^T (r_P x F)),
+// d/dt v_P = K F + b, K = 1/m - [r_P]x R J^-1 R^T [r_P]x, b = g + r_P x (R J^-1 (Omega x J Omega)) + bias; the
+// force from K F = -b rolls (contact_acceleration 0).
+TEST(EllipsoidTest, RollingForceFromTheBiasHoldsTheContact) {
+  Draw draw;
+  const Vector3d g(0.0, 0.0, -9.81);
+  double worst_split = 0.0, worst_rolling = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    const Motion m = random_motion(draw);
+    const double mass = draw.uniform(0.01, 1.0);
+    const Matrix3d Q = draw.rotation(), J = mass * 1e-3 * Q * draw.box(1.0).cwiseAbs().asDiagonal() * Q.transpose() +
+                                              mass * 1e-4 * Matrix3d::Identity();  // any positive definite inertia
+    const top_sim::EllipsoidContact c = top_sim::ellipsoid_contact(m.e, m.R0, m.n, m.omega0);
+    const Vector3d Omega = m.R0.transpose() * m.omega0;
+    auto accelerations = [&](const Vector3d& F) {  // Newton-Euler: (a, alpha) under the contact force F
+      const Vector3d Omega_dot = J.inverse() * (m.R0.transpose() * c.r_P.cross(F) - Omega.cross(J * Omega));
+      return std::make_pair(Vector3d(g + F / mass), Vector3d(m.R0 * Omega_dot));
+    };
+    Matrix3d r_x;
+    r_x << 0.0, -c.r_P.z(), c.r_P.y(), c.r_P.z(), 0.0, -c.r_P.x(), -c.r_P.y(), c.r_P.x(), 0.0;
+    const Matrix3d K = Matrix3d::Identity() / mass - r_x * m.R0 * J.inverse() * m.R0.transpose() * r_x;
+    const Vector3d b = g + c.r_P.cross(m.R0 * (J.inverse() * Omega.cross(J * Omega))) + c.bias;
+    const Vector3d F = draw.box(mass * 100.0);
+    const auto [a, alpha] = accelerations(F);
+    const double scale = (K * F).norm() + b.norm();
+    worst_split = std::max(worst_split, (top_sim::contact_acceleration(c, a, alpha) - (K * F + b)).norm() / scale);
+    const auto [a_roll, alpha_roll] = accelerations(K.ldlt().solve(-b));
+    worst_rolling = std::max(worst_rolling, top_sim::contact_acceleration(c, a_roll, alpha_roll).norm() / b.norm());
+  }
+  EXPECT_LE(worst_split, 1e-12);
+  EXPECT_LE(worst_rolling, 1e-10);
+  std::printf("solver: d/dt v_P = K F + b to %.2e, rolling force's contact acceleration %.2e (relative)\n",
+              worst_split, worst_rolling);
+}
+
 }  // namespace
